@@ -139,6 +139,7 @@ OPERATORS = {
     "frame_cross": ("cross", "orthogonal", "axis"),   # e3 = mean / |mean| -> np.cross(e1, e2)
     "whole_vector": ("homogeneous", "divid", "third"),   # np.append(e[:2], 1.0) -> e / e[2]
     "quadrant": ("arctan2", "quadrant", "atan2"),   # np.arctan(b / a) -> np.arctan2(b, a)
+    "swap_both": ("swap", "exchang", "both", "also"),   # P1, P2 = P2, P1 -> the points exchanged with them
     "drop_flag": ("flag", "cv2.", "remov", "|"),          # INTER_LINEAR | WARP_INVERSE_MAP -> INTER_LINEAR                 # m1 & m2 -> m1 | m2, a and b -> a or b
     "literal": ("argument", "value", "flag"),         # cv2.computeCorrespondEpilines(p, 2, F) -> (p, 1, F)
     "boolean_mask": ("mask", "boolean", "index"),   # pts[mask.ravel()] -> pts[mask.ravel().astype(bool)]
@@ -1250,6 +1251,15 @@ def _make_quadrant(node, payload):
     return ast.Call(_name(payload), [copy.deepcopy(ratio.left), copy.deepcopy(ratio.right)], [])
 
 
+def _make_swap_both(node, payload):
+    # P1, P2 = P2, P1 -> P1, P2, pts1, pts2 = P2, P1, pts2, pts1: a pair exchanged with its twin pair
+    first, second = payload
+    new = copy.deepcopy(node)
+    new.targets[0].elts += [ast.Name(first, ast.Store()), ast.Name(second, ast.Store())]
+    new.value.elts += [ast.Name(second, ast.Load()), ast.Name(first, ast.Load())]
+    return new
+
+
 def _make_from_end(node, payload):
     return ast.UnaryOp(ast.USub(), copy.deepcopy(node.right))   # len(A) - 1 -> -1: counted from the end
 
@@ -1334,7 +1344,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic, "from_end": _make_from_end, "frame_cross": _make_frame_cross,
-         "whole_vector": _make_whole_vector, "quadrant": _make_quadrant,
+         "whole_vector": _make_whole_vector, "quadrant": _make_quadrant, "swap_both": _make_swap_both,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
@@ -2840,6 +2850,9 @@ def _student_changes(node, parent, parents, words):
         yield "quadrant", "math.atan2" if _dotted(node.func) == "math.atan" else "np.arctan2", \
             "the angle is taken with arctan of a ratio, which loses its quadrant (arctan2 keeps it)"
     if words.student:
+        for pair in _twin_pairs_beside_a_swap(node, words.fn):
+            yield "swap_both", pair, ""   # the cameras exchanged, their points left (`P1, P2 = P2, P1`)
+    if words.student:
         vector = _third_entry_replaced(node)
         if vector:
             yield "whole_vector", f"{vector} / {vector}[2]", ""   # its third entry divided out
@@ -3063,6 +3076,19 @@ def _made_by_product(name: str, parents) -> bool:
                  for target in node.targets if isinstance(target, ast.Name)}
         entry = _PRODUCTS[id(parents)] = (parents, names)
     return name in entry[1]
+
+
+def _twin_pairs_beside_a_swap(node, fn) -> list[tuple[str, str]]:
+    """For `a, b = b, a` of twin names, the def's other twin pairs of parameters (c, d): exchanged with them."""
+    if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple)
+            and isinstance(node.value, ast.Tuple) and len(node.targets[0].elts) == 2 == len(node.value.elts)):
+        return []
+    names = [getattr(e, "id", None) for e in node.targets[0].elts]
+    values = [getattr(e, "id", None) for e in node.value.elts]
+    if None in names or values != names[::-1] or not twin_names(*names):
+        return []
+    params = [a.arg for a in fn.args.args if a.arg not in names]
+    return [(c, d) for i, c in enumerate(params) for d in params[i + 1:] if twin_names(c, d)][:2]
 
 
 def _third_entry_replaced(node) -> str:

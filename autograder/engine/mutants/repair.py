@@ -1385,7 +1385,21 @@ def _undoes_a_step(student, mutant, fix: Fix) -> bool:
     (:meth:`_Student.steers_a_branch`) or writing a permutation as the identity (`order = [0, 2, 1]` ->
     `[0, 1, 2]`): the step's own slip stays, where a change inside it mends it."""
     return student.steers_a_branch(mutant) or any(_identity_order(after) and not _identity_order(before)
-                                                  for _, before, after in fix.changes)
+                                                  or _assigns_itself(after) for _, before, after in fix.changes)
+
+
+def _assigns_itself(text: str) -> bool:
+    """Whether ``text`` is an assignment of names to themselves (`P2, P1 = (P2, P1)`): a statement doing nothing."""
+    try:
+        tree = parse(text)
+    except (SyntaxError, ValueError, RecursionError, MemoryError):
+        return False
+    statement = tree.body[0] if len(tree.body) == 1 else None
+    if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1):
+        return False
+    target, value = statement.targets[0], statement.value
+    names = lambda node: [getattr(e, "id", None) for e in (node.elts if isinstance(node, ast.Tuple) else [node])]  # noqa: E731
+    return None not in names(target) and names(target) == names(value)
 
 
 def _identity_order(text: str) -> bool:

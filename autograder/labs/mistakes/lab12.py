@@ -34,6 +34,25 @@ _DP = """
 """
 
 MISTAKES = {
+    # the blind set 1204d's 12/01: the cameras put in left-right order, their points left where they were
+    "triangulate exchanging the cameras but not their points": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1 = np.asarray(P1, dtype=np.float64)
+            P2 = np.asarray(P2, dtype=np.float64)
+            pts1 = np.asarray(pts1, dtype=np.float64)
+            single = pts1.ndim == 1
+            pts1 = pts1.reshape(-1, 2)
+            pts2 = np.asarray(pts2, dtype=np.float64).reshape(-1, 2)
+            if P2[0, 3] < P1[0, 3]:
+                P1, P2 = (P2, P1)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
+            A /= np.linalg.norm(A, axis=2, keepdims=True)
+            _, _, Vt = np.linalg.svd(A)
+            X = Vt[:, -1]
+            X = X[:, :3] / X[:, 3:]
+            return X[0] if single else X
+        """, ["`P1, P2, pts1, pts2 = (P2, P1, pts2, pts1)`"]),
     # the blind set 1204d's 12/02: np.vectorize typed by its first value, an int 0 for an invalid pixel
     "depth_from_disparity by np.vectorize returning an int 0": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
