@@ -2849,6 +2849,9 @@ def _student_changes(node, parent, parents, words):
             and len(node.args) == 1 and isinstance(node.args[0], ast.BinOp) and isinstance(node.args[0].op, ast.Div):
         yield "quadrant", "math.atan2" if _dotted(node.func) == "math.atan" else "np.arctan2", \
             "the angle is taken with arctan of a ratio, which loses its quadrant (arctan2 keeps it)"
+    if words.student and isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
+        for local in _resolved_from(node.id, words.fn, node.lineno):
+            yield "other_name", local, ""   # `DEFAULT_SMOOTHNESS` read again where `s`, made from it and the parameter, belongs
     if words.student:
         for pair in _twin_pairs_beside_a_swap(node, words.fn):
             yield "swap_both", pair, ""   # the cameras exchanged, their points left (`P1, P2 = P2, P1`)
@@ -3076,6 +3079,24 @@ def _made_by_product(name: str, parents) -> bool:
                  for target in node.targets if isinstance(target, ast.Name)}
         entry = _PRODUCTS[id(parents)] = (parents, names)
     return name in entry[1]
+
+
+def _resolved_from(name: str, fn, line: int) -> list[str]:
+    """The locals assigned (above ``line``) from the module-level ``name`` and a parameter together (`s =
+    DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)`): the value resolved for this call, where
+    ``name`` read again would ignore the parameter. Empty when ``name`` is assigned in the def."""
+    stored = {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    params = {a.arg for a in fn.args.args + fn.args.kwonlyargs}
+    if name in stored or name in params:
+        return []
+    found = []
+    for statement in ast.walk(fn):
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name) \
+                and statement.lineno < line:
+            read = {n.id for n in ast.walk(statement.value) if isinstance(n, ast.Name)}
+            if name in read and read & params and statement.targets[0].id not in found:
+                found.append(statement.targets[0].id)
+    return found[:2]
 
 
 def _twin_pairs_beside_a_swap(node, fn) -> list[tuple[str, str]]:

@@ -34,6 +34,33 @@ _DP = """
 """
 
 MISTAKES = {
+    # the blind set 1204d's 12/05: the module's default read again where the resolved smoothness belongs
+    "dp_stereo's penalty ramp from the module default": ("lab12.ex5", """
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
+            left, right = (_grey_float(left), _grey_float(right))
+            D = int(max_disparity) + 1
+            costs = _sad_volume(left, right, D - 1, int(block_size))
+            if s == 0:
+                return np.argmin(costs, axis=2).T.astype(np.float64)
+            width = costs.shape[0]
+            ramp = (DEFAULT_SMOOTHNESS * np.arange(D)).astype(np.float32)
+            energy = np.empty_like(costs)
+            energy[0] = costs[0]
+            for x in range(1, width):
+                previous = energy[x - 1]
+                from_below = np.minimum.accumulate(previous - ramp, axis=1) + ramp
+                from_above = np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1] - ramp
+                best = np.minimum(from_below, from_above)
+                energy[x] = costs[x] + best - best.min(axis=1, keepdims=True)
+            disparity = np.empty((width, costs.shape[1]), dtype=np.int64)
+            disparity[-1] = np.argmin(energy[-1], axis=1)
+            candidates = np.arange(D)
+            for x in range(width - 1, 0, -1):
+                jump = ramp[np.abs(candidates[None, :] - disparity[x][:, None])]
+                disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)
+            return disparity.T.astype(np.float64)
+        """, ["`s * np.arange(D)`"]),
     # the blind set 1204d's 12/01: the cameras put in left-right order, their points left where they were
     "triangulate exchanging the cameras but not their points": ("lab12.ex1", """
         def triangulate(P1, P2, pts1, pts2):
