@@ -2772,6 +2772,11 @@ def _student_changes(node, parent, parents, words):
         # (`A = cv2.estimateAffine2D(src, dst)`: the matrix and the inlier mask)
         for item in range(2):
             yield "other_result", f"{_operand(node)}[{item}]", ""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.where", "numpy.where", "np.nonzero", "numpy.nonzero") \
+            and len(node.args) == 1 and not (isinstance(parent, ast.Subscript) and parent.value is node) \
+            and not isinstance(parent, ast.Starred):
+        # the tuple of index arrays np.where(mask) returns kept where its first array belongs (`len(np.where(m))` is 1)
+        yield "other_result", f"{_operand(node)}[0]", ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) \
             and isinstance(node.right, (ast.Name, ast.Subscript)) and not isinstance(node.left, ast.Constant):
         for invalid in ("0.0", "np.nan"):   # a division with no guard where the divisor may be 0 or below
