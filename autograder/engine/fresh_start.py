@@ -142,59 +142,61 @@ def named(verdict, trial):
     """The failed ``verdict`` named as state kept between calls when it is (see the module docstring);
     else unchanged. The check's own first line (what it measured) stays; its hint goes."""
     from .mutants import naming
-    from .mutants.helper import HelperFailed
-    from .mutants.repair import _recorded, _student_code, _wrong, right
+    from .mutants.repair import _student_code
 
-    sandbox = getattr(trial, "sandbox", None)
-    if verdict.mistake == STATE_BETWEEN_CALLS:   # (told already, by a check calling twice)
-        return verdict
-    model = naming.model_for(trial.lab)
+    if verdict.mistake == STATE_BETWEEN_CALLS or getattr(trial, "sandbox", None) is None:
+        return verdict   # (told already, by a check calling twice)
     student = _student_code(trial)
-    if sandbox is None or model is None or student is None:
+    if student is None:
         return verdict
-    spent = sandbox.shared.setdefault(naming.SPENT, [0.0])
-    seconds = naming.GRADING_SECONDS - spent[0]
-    if seconds <= 0.5:
-        return verdict
-    clock = naming.work_clock(trial, seconds)
-    try:
-        for function, calls in _recorded(trial).items():
+
+    def work(trial, model, clock):
+        for function, calls in _recorded_calls(trial):
             kept = holders(student.text, function)
-            if function not in model.mutants or not kept:
-                continue
-            calls = calls[-naming.CALLS_PER_FUNCTION:]
-            inputs = [call[:3] for call in calls]
-            runner = naming.helper()
-            runner.prepare(model.source, model.module, inputs, max(1.0, clock.wall_left()))
-            references = runner.run((), range(len(inputs)), max(0.5, clock.wall_left()))
-            failing = [i for i, (call, reference) in enumerate(zip(calls, references))
-                       if naming.error_kind(reference) is None and _wrong(call[3], reference)]
-            if not failing:
-                continue
-            index = failing[0]
-            per_call = trial.student_seconds / max(1, len(trial.calls))
-            timeout = max(MIN_TIMEOUT, TIMEOUT_FACTOR * per_call)
-            fresh = []
-            for _ in range(2):   # two fresh modules: the same answer twice, no random draw behind it
-                if clock.left() <= 0:
-                    return verdict
-                outcome = sandbox.companion().call_variant(
-                    trial.lab.module, "", function, [inputs[index][1:]], fresh=True,
-                    timeout=max(0.05, min(timeout, clock.wall_left())))
-                value = outcome.value if outcome.ok else None
-                if not (isinstance(value, list) and len(value) == 1) or naming.error_kind(value[0]) is not None:
-                    break
-                fresh.append(value[0])
-            if len(fresh) == 2 and naming.distance(fresh[0], fresh[1]) == 0 \
-                    and right(fresh[0], references[index]) and _wrong(calls[index][3], references[index]):
+            if function in model.mutants and kept and _right_when_fresh(trial, model, clock, function, calls):
                 return _told(verdict, function, kept)
-    except HelperFailed:
-        return verdict
-    finally:
-        spent[0] += clock.used()
-        naming.forget_measures()
-        naming.release_helper()
-    return verdict
+        return None
+
+    return naming._within_budget(trial, naming.GRADING_SECONDS, work) or verdict
+
+
+def _recorded_calls(trial):
+    from .mutants import naming
+    from .mutants.repair import _recorded
+
+    return [(function, calls[-naming.CALLS_PER_FUNCTION:]) for function, calls in _recorded(trial).items()]
+
+
+def _right_when_fresh(trial, model, clock, function, calls) -> bool:
+    """Whether the first of ``calls`` the reference answers otherwise, made twice in the student's module
+    imported anew, answers the same both times and right."""
+    from .mutants import naming
+    from .mutants.repair import _wrong, right
+
+    inputs = [call[:3] for call in calls]
+    runner = naming.helper()
+    runner.prepare(model.source, model.module, inputs, max(1.0, clock.wall_left()))
+    references = runner.run((), range(len(inputs)), max(0.5, clock.wall_left()))
+    failing = [i for i, (call, reference) in enumerate(zip(calls, references))
+               if naming.error_kind(reference) is None and _wrong(call[3], reference)]
+    if not failing:
+        return False
+    index = failing[0]
+    per_call = trial.student_seconds / max(1, len(trial.calls))
+    timeout = max(MIN_TIMEOUT, TIMEOUT_FACTOR * per_call)
+    fresh = []
+    for _ in range(2):   # two fresh modules: the same answer twice, no random draw behind it
+        if clock.left() <= 0:
+            return False
+        outcome = trial.sandbox.companion().call_variant(
+            trial.lab.module, "", function, [inputs[index][1:]], fresh=True,
+            timeout=max(0.05, min(timeout, clock.wall_left())))
+        value = outcome.value if outcome.ok else None
+        if not (isinstance(value, list) and len(value) == 1) or naming.error_kind(value[0]) is not None:
+            return False
+        fresh.append(value[0])
+    return naming.distance(fresh[0], fresh[1]) == 0 and right(fresh[0], references[index]) \
+        and _wrong(calls[index][3], references[index])
 
 
 def _told(verdict, function: str, kept):

@@ -13,6 +13,19 @@ DROPS_BEHIND = """
     """
 
 
+# The reference's aperture simulation with the blur disc's scale and the rays' landing points as given.
+_APERTURE = """
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            X, _ = _points(points)
+            rng = np.random.default_rng(seed)
+            radius = aperture * np.sqrt(rng.uniform(0.0, 1.0, size=(len(X), n_rays)))
+            angle = rng.uniform(0.0, 2 * np.pi, size=(len(X), n_rays))
+            A = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=-1)
+            ideal = pinhole_project(X, f)
+            spread = {spread}
+            return {landed}
+"""
+
 MISTAKES = {
     # the blind set 1204d's 09/06: the tangential terms added only when both coefficients are non-zero
     "distortion's tangential terms only when both are non-zero": ("lab09.ext2", """
@@ -40,17 +53,9 @@ MISTAKES = {
             return _divide((X + p4) @ M.T, single)
         """, ["`X @ M.T + p4`"]),
     # the blind set 1204d's 09/03: the blur scale made with f = 1 (the sheet's example) whatever f is
-    "aperture spread 1 + 1 / Z whatever the focal length": ("lab09.ex4", """
-        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
-            X, _ = _points(points)
-            rng = np.random.default_rng(seed)
-            radius = aperture * np.sqrt(rng.uniform(0.0, 1.0, size=(len(X), n_rays)))
-            angle = rng.uniform(0.0, 2 * np.pi, size=(len(X), n_rays))
-            A = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=-1)
-            ideal = pinhole_project(X, f)
-            spread = 1.0 + 1.0 / X[:, 2]
-            return ideal[:, None, :] - A * spread[:, None, None]
-        """, ["aperture * (1 + c / Z) with c = 1"]),
+    "aperture spread 1 + 1 / Z whatever the focal length": ("lab09.ex4", _APERTURE.format(
+        spread="1.0 + 1.0 / X[:, 2]", landed="ideal[:, None, :] - A * spread[:, None, None]"),
+        ["aperture * (1 + c / Z) with c = 1"]),
     # the blind set 1204d's 09/05: object points built row by row in a loop, the row coordinate left unscaled
     # (not told "in the wrong order": the change that mends it takes that guess's place)
     "calibrate scaling one coordinate of the object points only": ("lab09.ext1", """
@@ -72,17 +77,9 @@ MISTAKES = {
             return K, dist.ravel()[:5], float(rms)
         """, ["`(i * square_size, j * square_size, 0.0)`"]),
     # the blind set 1204c's 09/05: the spread factor applied to the whole difference, the ideal projection too
-    "aperture spread applied to the ideal projection too": ("lab09.ex4", """
-        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
-            X, _ = _points(points)
-            rng = np.random.default_rng(seed)
-            radius = aperture * np.sqrt(rng.uniform(0.0, 1.0, size=(len(X), n_rays)))
-            angle = rng.uniform(0.0, 2 * np.pi, size=(len(X), n_rays))
-            A = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=-1)
-            ideal = pinhole_project(X, f)
-            spread = 1.0 + f / X[:, 2]
-            return (ideal[:, None, :] - A) * spread[:, None, None]
-        """, ["`ideal[:, None, :] - A * spread[:, None, None]`"]),
+    "aperture spread applied to the ideal projection too": ("lab09.ex4", _APERTURE.format(
+        spread="1.0 + f / X[:, 2]", landed="(ideal[:, None, :] - A) * spread[:, None, None]"),
+        ["`ideal[:, None, :] - A * spread[:, None, None]`"]),
     # the blind set 1204c's 09/06: a disc pasted through a window never clipped to the image
     "draw_points pasting a disc through an unclipped window": ("lab09.ex5", """
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
@@ -109,15 +106,8 @@ MISTAKES = {
         """, ["cv2.Rodrigues converts both ways"]),
     # the blind set 1201d's 09/06: the rays stacked along the first axis
     # the blind set 1201e's 09/07: the 1 of (1 + f / Z) dropped
-    "aperture offsets scaled by f / Z": ("lab09.ex4", """
-        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
-            X, _ = _points(points)
-            rng = np.random.default_rng(seed)
-            radius = aperture * np.sqrt(rng.uniform(0.0, 1.0, size=(len(X), n_rays)))
-            angle = rng.uniform(0.0, 2 * np.pi, size=(len(X), n_rays))
-            A = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=-1)
-            return pinhole_project(X, f)[:, None, :] - A * (f / X[:, 2])[:, None, None]
-        """, ["without the 1 of (1 + f / z)"]),
+    "aperture offsets scaled by f / Z": ("lab09.ex4", _APERTURE.format(
+        spread="f / X[:, 2]", landed="ideal[:, None, :] - A * spread[:, None, None]"), ["without the 1 of (1 + f / z)"]),
     "aperture rays returned as (n_rays, N, 2)": ("lab09.ex4", """
         _simulate_aperture = simulate_aperture
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):

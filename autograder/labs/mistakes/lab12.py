@@ -5,7 +5,7 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 
 from . import columns_by_first_axis
 
-# The reference's DP with the previous column's energy and the backtracking's start as given (two slips of one form).
+# The reference's DP with the previous column's energy, the backtracking's start and the penalty's scale as given.
 _DP = """
         def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
             s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
@@ -15,7 +15,7 @@ _DP = """
             if s == 0:
                 return np.argmin(costs, axis=2).T.astype(np.float64)
             width = costs.shape[0]
-            ramp = (s * np.arange(D)).astype(np.float32)
+            ramp = ({ramp} * np.arange(D)).astype(np.float32)
             energy = np.empty_like(costs)
             energy[0] = costs[0]
             for x in range(1, width):
@@ -35,32 +35,8 @@ _DP = """
 
 MISTAKES = {
     # the blind set 1204d's 12/05: the module's default read again where the resolved smoothness belongs
-    "dp_stereo's penalty ramp from the module default": ("lab12.ex5", """
-        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
-            s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
-            left, right = (_grey_float(left), _grey_float(right))
-            D = int(max_disparity) + 1
-            costs = _sad_volume(left, right, D - 1, int(block_size))
-            if s == 0:
-                return np.argmin(costs, axis=2).T.astype(np.float64)
-            width = costs.shape[0]
-            ramp = (DEFAULT_SMOOTHNESS * np.arange(D)).astype(np.float32)
-            energy = np.empty_like(costs)
-            energy[0] = costs[0]
-            for x in range(1, width):
-                previous = energy[x - 1]
-                from_below = np.minimum.accumulate(previous - ramp, axis=1) + ramp
-                from_above = np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1] - ramp
-                best = np.minimum(from_below, from_above)
-                energy[x] = costs[x] + best - best.min(axis=1, keepdims=True)
-            disparity = np.empty((width, costs.shape[1]), dtype=np.int64)
-            disparity[-1] = np.argmin(energy[-1], axis=1)
-            candidates = np.arange(D)
-            for x in range(width - 1, 0, -1):
-                jump = ramp[np.abs(candidates[None, :] - disparity[x][:, None])]
-                disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)
-            return disparity.T.astype(np.float64)
-        """, ["`s * np.arange(D)`"]),
+    "dp_stereo's penalty ramp from the module default": ("lab12.ex5", _DP.format(
+        previous="energy[x - 1]", last="energy[-1]", ramp="DEFAULT_SMOOTHNESS"), ["`s * np.arange(D)`"]),
     # the blind set 1204d's 12/01: the cameras put in left-right order, their points left where they were
     "triangulate exchanging the cameras but not their points": ("lab12.ex1", """
         def triangulate(P1, P2, pts1, pts2):
@@ -822,9 +798,9 @@ MISTAKES = {
             return _sad(left, right, max_disparity, 5)
         """, ["block_size=3 and block_size=9 give the same disparity map: block_size is ignored"]),
     # the blind set 1202c's 12/08: the recurrence reads the previous column's data cost
-    "DP whose forward pass carries the previous column's data cost": ("lab12.ex5", _DP.format(
+    "DP whose forward pass carries the previous column's data cost": ("lab12.ex5", _DP.format(ramp="s",
         previous="costs[x - 1]", last="energy[-1]"), ["is computed from `costs[x - 1]` and never from `energy` at x - 1"]),
-    "DP whose backtracking starts from the last column's least data cost": ("lab12.ex5", _DP.format(
+    "DP whose backtracking starts from the last column's least data cost": ("lab12.ex5", _DP.format(ramp="s",
         previous="energy[x - 1]", last="costs[-1]"), ["decided by its last columns alone"]),
     # (the blind set 1202d's 12/05 left np.empty_like's memory in a column: answers that vary from call to call)
     "DP leaving a few pixels at random unset": ("lab12.ex5", """
