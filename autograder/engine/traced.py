@@ -1260,6 +1260,14 @@ def _agrees(value, theirs) -> bool:
                for other in theirs)
 
 
+def _rank_two(value) -> bool:
+    """A 3 x 3 matrix of rank 2 (an F or an E): its smallest singular value a millionth of its largest."""
+    if value.shape != (3, 3) or not np.isfinite(value).all():
+        return False
+    s = np.linalg.svd(value, compute_uv=False)
+    return bool(s[0] > 0 and s[2] <= 1e-6 * s[0] < s[1])
+
+
 def _made_homogeneous(value, other) -> bool:
     """Whether ``value`` is ``other`` with one more row or column, first or last, that is constant (a
     column of ones: points made homogeneous) or a unit vector (a matrix's [0, 0, 1] row): the student's
@@ -1342,7 +1350,9 @@ def _relation(value, theirs) -> str | None:
             inverse = _inverse(other)
             if inverse is not None and not _close(inverse, other) and _close(value, inverse):
                 found.append("the inverse of")
-        if value.shape == other.shape and np.abs(other).max() > 0 and _close(value, -other):
+        if value.shape == other.shape and np.abs(other).max() > 0 and _close(value, -other) and not _rank_two(value):
+            # (a fundamental or essential matrix, of rank 2, is defined up to scale and sign: its negative is
+            # the same matrix, no departure)
             found.append("the negative of")
         if value.shape == other.shape and np.all(other != 0) and not _close(np.abs(other), np.ones_like(other)) \
                 and _close(value, 1.0 / other):

@@ -45,6 +45,20 @@ _WITHOUT_K = _MATCHED + """            inliers = mask.ravel().astype(bool)
 """
 
 MISTAKES = {
+    # the blind set 1204d's 11/05: V made a proper rotation by negating a column of Vt, not its last row (and
+    # not told as the 8-point core's F negated: a rank-2 matrix is the same up to sign)
+    "essential_8point negating a column of Vt for a proper V": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+            x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
+            E = _eight_point_core(x1, x2)
+            U, _, Vt = np.linalg.svd(E)
+            if np.linalg.det(U) < 0:
+                U[:, -1] *= -1
+            if np.linalg.det(Vt) < 0:
+                Vt[:, -1] *= -1
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """, ["`Vt[-1, :] *= -1`"]),
     # the blind set 1204d's 11/02: the line's normal angle from arctan of a ratio, its quadrant lost
     "epipolar lines rebuilt from arctan(b / a)": ("lab11.ex2", """
         def epipolar_lines(F, pts1):
