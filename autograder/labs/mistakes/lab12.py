@@ -34,6 +34,22 @@ _DP = """
 """
 
 MISTAKES = {
+    # the blind set 1204d's 12/08: the decoded stripe index taken as the projector column itself
+    "structured light with the stripe index as the projector column": ("lab12.ex6", """
+        def depth_from_structured_light(images, f, baseline):
+            images = np.asarray(images)
+            n_bits, height, width = images.shape
+            bits = images > 127
+            binary = np.zeros((height, width), dtype=np.int64)
+            bit = np.zeros((height, width), dtype=bool)
+            for i in range(n_bits):
+                bit = bit ^ bits[i]
+                binary = binary << 1 | bit
+            column = binary.astype(np.float64)
+            disparity = np.arange(width)[None, :] - column
+            decodable = bits.any(axis=0)
+            return np.where(decodable, depth_from_disparity(disparity, f, baseline), 0.0)
+        """, ["the stripe index k is used as the projector column"]),
     # the blind set 1204d's 12/05: the module's default read again where the resolved smoothness belongs
     "dp_stereo's penalty ramp from the module default": ("lab12.ex5", _DP.format(
         previous="energy[x - 1]", last="energy[-1]", ramp="DEFAULT_SMOOTHNESS"), ["`s * np.arange(D)`"]),
