@@ -399,6 +399,9 @@ DIRECT_EVIDENCE = {
                                            "(the principal point as a resized pixel centre), within the "
                                            "calibration's own tolerances (measured)",
     "colours_lost": "the result's three channels are equal at every pixel where an input's differ (measured)",
+    "judge_calibration": "a reprojection error above 1 px on clean rendered views (measured); the points' order is "
+                         "a guess (claims.guessed: a change of the code confirmed to mend it takes its place), not "
+                         "said where the code builds them row by row (read)",
     "ncc_flat_border": "more than half the pixels changed by the border take exactly the first disparity whose "
                        "right block lies wholly in it, where np.argmin over NaN costs lands (measured: a guard, an "
                        "epsilon or a cost not normalised lands elsewhere)",

@@ -1384,8 +1384,10 @@ def _undoes_a_step(student, mutant, fix: Fix) -> bool:
     """Whether a change mends by making a step of the code do nothing: steering round a branch
     (:meth:`_Student.steers_a_branch`) or writing a permutation as the identity (`order = [0, 2, 1]` ->
     `[0, 1, 2]`): the step's own slip stays, where a change inside it mends it."""
+    # (and a special case's whole block taken out -- `if ...: ...` -- which a change inside it mends too)
     return student.steers_a_branch(mutant) or any(_identity_order(after) and not _identity_order(before)
-                                                  or _assigns_itself(after) for _, before, after in fix.changes)
+                                                  or _assigns_itself(after) for _, before, after in fix.changes) \
+        or (fix.operator == "drop_statement" and fix.changes[0][1].startswith("if ") and " ... (lines " in fix.changes[0][1])
 
 
 def _assigns_itself(text: str) -> bool:
@@ -2921,11 +2923,13 @@ _SIZE_CODE = re.compile(r"\.shape\b|\bresize\b|\breshape\b|\bpad\b|\bpyr(?:Down|
 
 
 def _sized_otherwise(answer, reference) -> bool:
-    """Whether the answer's first array has another shape than the reference's (of as many axes)."""
+    """Whether the answer's first array is an image of another size than the reference's (not its transpose)."""
     first = lambda value: value[0] if isinstance(value, (tuple, list)) and value else value  # noqa: E731
     got, want = first(answer), first(reference)
-    return isinstance(got, np.ndarray) and isinstance(want, np.ndarray) and got.ndim == want.ndim \
-        and got.shape != want.shape
+    # (an image: its size set by a resize, a crop, a canvas; an array of points of another shape is reshaped,
+    # stacked or transposed -- any of their changes)
+    return isinstance(got, np.ndarray) and isinstance(want, np.ndarray) and naming.has_image(want) \
+        and got.ndim == want.ndim and got.shape != want.shape and got.shape[:2] != want.shape[1::-1]
 
 
 def _rows_for_columns(answer, reference) -> bool:
