@@ -2216,6 +2216,22 @@ def _small(call) -> list:
     return [made] if changed else []
 
 
+def _turned(call) -> list:
+    """The call with every 8-bit image that is not square (both sides above 20 pixels) turned a quarter
+    (np.rot90: a landscape image made portrait), images of one shape alike ([] when it has none)."""
+    function, args, kwargs = call
+
+    def turn(value):
+        if isinstance(value, np.ndarray) and value.dtype == np.uint8 and value.ndim >= 2 \
+                and min(value.shape[:2]) > 20 and value.shape[0] != value.shape[1]:
+            return np.ascontiguousarray(np.rot90(value))
+        return value
+
+    made = (function, tuple(turn(a) for a in args), {k: turn(v) for k, v in kwargs.items()})
+    changed = any(a is not b for a, b in zip(made[1], args)) or any(made[2][k] is not kwargs[k] for k in kwargs)
+    return [made] if changed else []
+
+
 def _beyond(call, defaults=()) -> list:
     """The call with the values its check chose given as the contract's other values of the same kind:
     whole numbers (an int argument: a shift of 100 px) made fractional, a number given with the other
@@ -2969,6 +2985,7 @@ class _Variants:
         self.translated: set = set()  # the variants with a translation for a homography (the check's own images)
         self.holed: set = set()      # the variants with a point given as NaN (see _breaks_holed)
         self.small: set = set()      # the variants with the images small (a change in what their size gives only)
+        self.turned: set = set()     # the variants with the images turned a quarter (portrait for landscape)
         self.widened: set = set()    # the variants made unlike the check's inputs (see _widened)
         self.channels: set = set()   # of keeping, the variants with the images in the other number of channels
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
@@ -3149,6 +3166,11 @@ class _Variants:
             small = _small(self.inputs[failing[0]])
             self.small = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(small)))
             variants += small
+            # (and its images turned a quarter, portrait where they were landscape: a change that mends only the
+            # check's own shape -- a centre's y from the height where x still comes from a square's side -- is not)
+            turned = _turned(self.inputs[failing[0]])
+            self.turned = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(turned)))
+            variants += turned
             # (and the values the check chose given otherwise: whole numbers made fractional, 0/1 masks soft)
             beyond = [call for i in failing[:2]
                       for call in _beyond(self.inputs[i], self.model.defaults.get(self.function, ()))]
@@ -3228,6 +3250,8 @@ class _Variants:
         if mutant.key not in self.checked:
             return False
         if usable and self.checked[mutant.key] == 0.0 and self._wrong_where_exact(mutant, usable, every, wanted):
+            return False
+        if usable and self._unmended_when_turned(mutant, usable, every, wanted):
             return False
         # A function with many right answers (a rectification, an estimator on noisy points: its own
         # least squares) is far from the reference's where it is right: the grading's other checks of
@@ -3429,6 +3453,20 @@ class _Variants:
             and self.distance(v, wanted[i]) <= spread  # noqa: E731
         return all(self.right(v, wanted[i], confirming=True) or near(v, i) or kept(v, theirs, i)
                    for v, theirs, i in zip(values, own, indices))
+
+    def _unmended_when_turned(self, mutant, usable, every, wanted) -> bool:
+        """Whether on the images turned a quarter the change's answers are as far from the reference's as the
+        student's own (half as far at least): a change the check's other shapes accept, mending nothing
+        there."""
+        turned = sorted(self.turned.intersection(usable))
+        if not turned:
+            return False
+        values, own = self.answers(mutant, turned, every), self._own(turned, every)
+        if values is None or own is None:
+            return False
+        return any(naming.error_kind(theirs) is None and self.distance(theirs, wanted[i]) > 0
+                   and self.distance(value, wanted[i]) >= 0.5 * self.distance(theirs, wanted[i])
+                   for value, theirs, i in zip(values, own, turned))
 
     def _own(self, indices, every) -> list | None:
         """The student's own answers on ``every[i]`` for ``indices`` (the trial's, or asked once per
