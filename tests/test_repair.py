@@ -4517,3 +4517,27 @@ def test_a_change_that_throws_away_a_drawing_is_no_repair_and_a_copy_is_tried_in
     made = {student.fix(m).changes[0][2] for m in student.mutants("draw_matches") if m.operator == "other_name"
             and student.fix(m)}
     assert "cv2.line(out, a, b, (0, 255, 0), 1)" in made, made
+
+
+def test_a_change_mending_landscape_images_only_is_not_told(tmp_path):
+    """The image padded into a square at its bottom and right and rotated about the square's centre: the
+    check's images are all landscape, where a centre of ((side - 1) / 2, (height - 1) / 2) is the image's; on
+    the same image turned portrait it mends nothing, so it is not told (the blind set 1204d's 07/03)."""
+    source = """
+        def rotate(image, angle_deg=45):
+            height, width = image.shape[:2]
+            side = max(height, width)
+            padding = [(0, side - height), (0, side - width)] + [(0, 0)] * (image.ndim - 2)
+            square = np.pad(image, padding)
+            centre = ((side - 1) / 2.0, (side - 1) / 2.0)
+            M = cv2.getRotationMatrix2D(centre, angle_deg, 1.0)
+            rotated = cv2.warpAffine(square, M, (side, side), flags=cv2.INTER_LINEAR,
+                                     borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+            return rotated[:height, :width]
+        """
+    messages = failing_messages(mutant(tmp_path, "lab07_transformations", source), "lab07.ex2")
+    assert messages
+    assert not any("`((side - 1) / 2.0, (height - 1) / 2.0)`" in m for m in messages), messages
+    turned = repair._turned(("rotate", (np.zeros((30, 40, 3), np.uint8), 45), {}))
+    assert turned and turned[0][1][0].shape == (40, 30, 3)
+    assert repair._turned(("rotate", (np.zeros((30, 30), np.uint8), 45), {})) == []
