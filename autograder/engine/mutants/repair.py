@@ -3455,18 +3455,17 @@ class _Variants:
                    for v, theirs, i in zip(values, own, indices))
 
     def _unmended_when_turned(self, mutant, usable, every, wanted) -> bool:
-        """Whether on the images turned a quarter the change's answers are as far from the reference's as the
-        student's own (half as far at least): a change the check's other shapes accept, mending nothing
-        there."""
+        """Whether on the images turned a quarter the change answers as the student's own code does, where
+        that is wrong: a change the check's other shapes accept, mending nothing there (an answer merely
+        still far from the reference's -- a drawing in the student's own style -- refutes nothing)."""
         turned = sorted(self.turned.intersection(usable))
         if not turned:
             return False
         values, own = self.answers(mutant, turned, every), self._own(turned, every)
         if values is None or own is None:
             return False
-        return any(naming.error_kind(theirs) is None and self.distance(theirs, wanted[i]) > 0
-                   and self.distance(value, wanted[i]) >= 0.5 * self.distance(theirs, wanted[i])
-                   for value, theirs, i in zip(values, own, turned))
+        return any(naming.error_kind(theirs) is None and not self.right(theirs, wanted[i], theirs)
+                   and naming.distance(value, theirs) == 0 for value, theirs, i in zip(values, own, turned))
 
     def _own(self, indices, every) -> list | None:
         """The student's own answers on ``every[i]`` for ``indices`` (the trial's, or asked once per
