@@ -13,6 +13,29 @@ the Gradescope zip ships this folder, as neither ships the hidden checks.
 """
 
 
+# ------------------------------------------------------------------ a reference def with one line changed
+def reference_def_with(module: str, function: str, line: str, changed: str) -> str:
+    """The reference solution's ``def function`` (of ``reference_solutions/<module>.py``, docstring left out)
+    with its one line ``line`` (stripped text) written as ``changed``: a case that is the reference with one
+    slip, without copying the rest of the def into the table."""
+    import ast
+    import textwrap
+    from pathlib import Path
+
+    source = (Path(__file__).resolve().parents[3] / "reference_solutions" / f"{module}.py").read_text()
+    node = next(n for n in ast.parse(source).body if isinstance(n, ast.FunctionDef) and n.name == function)
+    body = node.body[1:] if isinstance(node.body[0], ast.Expr) and isinstance(node.body[0].value, ast.Constant) \
+        else node.body
+    written = source.splitlines()
+    kept = written[node.lineno - 1:node.lineno] + written[body[0].lineno - 1:node.end_lineno]
+    matches = [i for i, text in enumerate(kept) if text.strip() == line]
+    if len(matches) != 1:
+        raise ValueError(f"{module}.{function}: {line!r} is not one line of the reference's def")
+    indent = kept[matches[0]][:len(kept[matches[0]]) - len(kept[matches[0]].lstrip())]
+    kept[matches[0]] = indent + changed
+    return "\n" + textwrap.indent(textwrap.dedent("\n".join(kept)), " " * 8) + "\n"
+
+
 # ------------------------------------------------------------------ cases made alike in every lab
 def one_point_by_length(function: str, exercise: str, signature: str, points: str, test: str) -> dict:
     """The case of ``function`` telling a single (X, Y, Z) point by its number of rows (``test``, on the

@@ -3,7 +3,7 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
-from . import columns_by_first_axis
+from . import columns_by_first_axis, reference_def_with
 
 # The reference's DP with the previous column's energy, the backtracking's start and the penalty's scale as given.
 _DP = """
@@ -79,36 +79,9 @@ MISTAKES = {
             return rule(np.asarray(disparity, dtype=np.float64))
         """, ["every depth is cut to a whole number"]),
     # the blind set 1204c's 12/04: the rectified frame's third axis taken as the mean optical axis, not e1 x e2
-    "rectify's third axis the mean optical axis": ("lab12.ex3", """
-        def rectify(img_l, img_r, K1, K2, R, T):
-            K1 = np.asarray(K1, dtype=np.float64)
-            K2 = np.asarray(K2, dtype=np.float64)
-            R = np.asarray(R, dtype=np.float64)
-            T = np.asarray(T, dtype=np.float64).reshape(3)
-            height, width = np.asarray(img_l).shape[:2]
-            C2 = -R.T @ T
-            e1 = C2 / np.linalg.norm(C2)
-            mean_axis = np.array([0.0, 0.0, 1.0]) + R.T @ np.array([0.0, 0.0, 1.0])
-            e2 = np.cross(mean_axis, e1)
-            e2 /= np.linalg.norm(e2)
-            e3 = mean_axis / np.linalg.norm(mean_axis)
-            R_rect = np.vstack([e1, e2, e3])
-            f = (K1[0, 0] + K1[1, 1] + K2[0, 0] + K2[1, 1]) / 4.0
-            rot1 = R_rect @ np.linalg.inv(K1)
-            rot2 = R_rect @ R.T @ np.linalg.inv(K2)
-            centre = np.array([(width - 1) / 2.0, (height - 1) / 2.0, 1.0])
-            mapped = []
-            for rot in (rot1, rot2):
-                ray = rot @ centre
-                mapped.append(f * ray[:2] / ray[2])
-            cx, cy = centre[:2] - np.mean(mapped, axis=0)
-            K_new = np.array([[f, 0.0, cx], [0.0, f, cy], [0.0, 0.0, 1.0]])
-            H1 = K_new @ rot1
-            H2 = K_new @ rot2
-            rect_l = cv2.warpPerspective(np.asarray(img_l), H1, (width, height), flags=cv2.INTER_LINEAR)
-            rect_r = cv2.warpPerspective(np.asarray(img_r), H2, (width, height), flags=cv2.INTER_LINEAR)
-            return (rect_l, rect_r, H1, H2)
-        """, ["`e3 = np.cross(e1, e2)`"]),
+    "rectify's third axis the mean optical axis": ("lab12.ex3", reference_def_with(
+        "lab12_stereo", "rectify", "e3 = np.cross(e1, e2)", "e3 = mean_axis / np.linalg.norm(mean_axis)"),
+        ["`e3 = np.cross(e1, e2)`"]),
     # the blind set 1204c's 12/03: validity judged against the map's own smallest value, not 0
     "depth_from_disparity valid above the map's minimum": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
