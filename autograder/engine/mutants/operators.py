@@ -2855,7 +2855,7 @@ def _student_changes(node, parent, parents, words):
         yield "quadrant", "math.atan2" if _dotted(node.func) == "math.atan" else "np.arctan2", \
             "the angle is taken with arctan of a ratio, which loses its quadrant (arctan2 keeps it)"
     if words.student and isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
-        for local in _resolved_from(node.id, words.fn, node.lineno):
+        for local in _resolved_from(node.id, words, node.lineno):
             yield "other_name", local, ""   # `DEFAULT_SMOOTHNESS` read again where `s`, made from it and the parameter, belongs
     if words.student:
         for pair in _twin_pairs_beside_a_swap(node, words.fn):
@@ -2866,7 +2866,7 @@ def _student_changes(node, parent, parents, words):
             yield "whole_vector", f"{vector} / {vector}[2]", ""   # its third entry divided out
             yield "whole_vector", vector, ""                        # or kept, homogeneous
     if words.student and isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
-        for first, second in _frame_partners(node.targets[0].id, node, words.fn):
+        for first, second in _frame_partners(node.targets[0].id, node, words):
             yield "frame_cross", (first, second), ""   # a rotation's row not made orthogonal to the other two
     if words.student and isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) \
             and isinstance(node.right, ast.Constant) and type(node.right.value) is int and node.right.value > 0 \
@@ -3086,22 +3086,37 @@ def _made_by_product(name: str, parents) -> bool:
     return name in entry[1]
 
 
-def _resolved_from(name: str, fn, line: int) -> list[str]:
+def _frame_reading(words):
+    """The def's stored names, its one-name assignments reading a parameter (line, name, names read), and its
+    three names stacked into rows (line, names): read once per def (kept on ``words``), so that each node's
+    question costs no walk of the def (a long student def would make that the square of its size)."""
+    if not hasattr(words, "frame_reading"):
+        fn = words.fn
+        params = {a.arg for a in fn.args.args + fn.args.kwonlyargs}
+        stored, resolved, stacks = set(), [], []
+        for node in ast.walk(fn):
+            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+                stored.add(node.id)
+            elif isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+                read = {n.id for n in ast.walk(node.value) if isinstance(n, ast.Name)}
+                if read & params:
+                    resolved.append((node.lineno, node.targets[0].id, read))
+            elif isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _ROWS_STACKED and node.args \
+                    and isinstance(node.args[0], (ast.List, ast.Tuple)) and len(node.args[0].elts) == 3 \
+                    and all(isinstance(e, ast.Name) for e in node.args[0].elts):
+                stacks.append((node.lineno, [e.id for e in node.args[0].elts]))
+        words.frame_reading = (stored | params, sorted(resolved, key=lambda r: r[0]), stacks)
+    return words.frame_reading
+
+
+def _resolved_from(name: str, words, line: int) -> list[str]:
     """The locals assigned (above ``line``) from the module-level ``name`` and a parameter together (`s =
     DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)`): the value resolved for this call, where
-    ``name`` read again would ignore the parameter. Empty when ``name`` is assigned in the def."""
-    stored = {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
-    params = {a.arg for a in fn.args.args + fn.args.kwonlyargs}
-    if name in stored or name in params:
+    ``name`` read again would ignore the parameter. Empty when ``name`` is the def's own or a parameter."""
+    own, resolved, _ = _frame_reading(words)
+    if name in own:
         return []
-    found = []
-    for statement in ast.walk(fn):
-        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name) \
-                and statement.lineno < line:
-            read = {n.id for n in ast.walk(statement.value) if isinstance(n, ast.Name)}
-            if name in read and read & params and statement.targets[0].id not in found:
-                found.append(statement.targets[0].id)
-    return found[:2]
+    return list(dict.fromkeys(target for at, target, read in resolved if at < line and name in read))[:2]
 
 
 def _twin_pairs_beside_a_swap(node, fn) -> list[tuple[str, str]]:
@@ -3147,22 +3162,17 @@ def _third_entry_replaced(node) -> str:
 _ROWS_STACKED = {"vstack", "array", "stack", "row_stack", "column_stack"}
 
 
-def _frame_partners(name: str, assignment, fn) -> list[tuple[str, str]]:
+def _frame_partners(name: str, assignment, words) -> list[tuple[str, str]]:
     """For a name stacked with two others into a 3 x 3 matrix (`np.vstack([e1, e2, e3])`) whose value here is
     not a cross product: the two others in the cyclic order that makes it their cross product (e3 = e1 x e2,
-    e1 = e2 x e3, e2 = e3 x e1), when the others are assigned in the def."""
+    e1 = e2 x e3, e2 = e3 x e1)."""
     if isinstance(assignment.value, ast.Call) and _dotted(assignment.value.func).rsplit(".", 1)[-1] == "cross":
         return []
-    found = []
-    for node in ast.walk(fn):
-        if isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _ROWS_STACKED and node.args \
-                and isinstance(node.args[0], (ast.List, ast.Tuple)) and len(node.args[0].elts) == 3 \
-                and all(isinstance(e, ast.Name) for e in node.args[0].elts) and getattr(node, "lineno", 0) > assignment.lineno:
-            names = [e.id for e in node.args[0].elts]
-            if name in names and len(set(names)) == 3:
-                k = names.index(name)
-                found.append((names[(k + 1) % 3], names[(k + 2) % 3]))
-    return found[:1]
+    for at, names in _frame_reading(words)[2]:
+        if at > assignment.lineno and name in names and len(set(names)) == 3:
+            k = names.index(name)
+            return [(names[(k + 1) % 3], names[(k + 2) % 3])]
+    return []
 
 
 def _size_of_something(node) -> bool:
