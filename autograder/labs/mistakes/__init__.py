@@ -22,8 +22,10 @@ def reference_def_with(module: str, function: str, line: str, changed: str) -> s
     import textwrap
     from pathlib import Path
 
+    from ...loading.parsing import parse
+
     source = (Path(__file__).resolve().parents[3] / "reference_solutions" / f"{module}.py").read_text()
-    node = next(n for n in ast.parse(source).body if isinstance(n, ast.FunctionDef) and n.name == function)
+    node = next(n for n in parse(source, max_chars=None, max_statements=None).body if isinstance(n, ast.FunctionDef) and n.name == function)
     body = node.body[1:] if isinstance(node.body[0], ast.Expr) and isinstance(node.body[0].value, ast.Constant) \
         else node.body
     written = source.splitlines()
