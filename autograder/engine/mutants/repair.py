@@ -104,9 +104,13 @@ class Fix:
         inside = "" if self.where == function else f", in `{self.where}`"
         if self.operator in _IN_WORDS:   # (told in words: see _Student._moved)
             return self.changes[0][2].replace("{inside}", inside)
+        merged = _nested_merged(self.changes)
         said = [f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
-                for line, before, after in _nested_merged(self.changes)]
-        told = ("removing " if self.changes[0][2] == "pass" else "changing ") + " and ".join(said)
+                for line, before, after in merged]
+        verbs = ["removing " if after == "pass" else "changing " for _, _, after in merged]
+        # (one verb for changes of one kind; each its own where a step is taken out and a line changed)
+        told = verbs[0] + " and ".join(said) if len(set(verbs)) == 1 else \
+            " and ".join(verb + part for verb, part in zip(verbs, said))
         if self.skips:
             line, name, source, constants = self.skips
             reads = " and ".join(f"`{c}`" for c in constants)
@@ -295,6 +299,7 @@ class _Student:
         self._mutants: dict = {}     # API function -> the operators' changes of the code it runs
         self.fixes: dict = {}        # mutant key -> its Fix, or None when it cannot be shown
         self._ordered: dict = {}     # function -> its mutants that can be shown, smallest change first
+        self._novel: dict = {}       # function -> the places of its statements the reference writes nowhere
         self._statements: dict = {}   # def -> line -> the first line of the statement holding it
         self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
         self._shapes: dict = {}      # id of a statement (kept alive in _walked) -> its code with names masked
@@ -361,7 +366,7 @@ class _Student:
                 # first (a helper's `xy = mapped[..., :2]` before the 300 changes of the function's own
                 # lines, all the reference's); the function's own keep their turns (a reshape's order
                 # changed on its own line, not compensated on the line before).
-                novel = self._novel_statements(function, shown)
+                novel = self._novel[function] = self._novel_statements(function, shown)
                 self._ordered[function] = sorted(smallest, key=lambda m: (
                     not (m.where != function and self._place_of(m) in novel), m.where != function, turn[m.key]))
             return self._ordered[function]
@@ -400,6 +405,26 @@ class _Student:
                 if len(novel) > NOVEL_STATEMENTS:
                     return set()
         return novel
+
+    def own_steps(self, function: str) -> list[tuple]:
+        """Pairs of places ((def, line), (def, line)) of two statements the reference writes nowhere
+        (:meth:`_novel_statements`), one right after the other in one block, the second reading a name
+        the first binds: a step of the student's own and the line written for it (`s = np.sort(s)`,
+        then `s[0] = 0.0`), where one slip is mended at both lines at once and at neither alone."""
+        self.ordered(function)
+        novel = self._novel.get(function, set())
+        steps = []
+        for where in {place[0] for place in novel}:
+            fn = self._defs.get(where)
+            blocks = [getattr(node, field) for node in ast.walk(fn) if fn is not None
+                      for field in ("body", "orelse") if isinstance(getattr(node, field, None), list)]
+            for block in blocks:
+                for first, second in zip(block, block[1:]):
+                    places = (where, first.lineno), (where, second.lineno)
+                    if places[0] in novel and places[1] in novel and isinstance(first, (ast.Assign, ast.AugAssign)) \
+                            and _bound_names(first) & _read(second):
+                        steps.append(places)
+        return steps
 
     def follows_reference(self, mutant) -> bool:
         """Whether the change rewrites a statement that is the reference's own, with all it reads
@@ -1413,6 +1438,11 @@ def _identity_order(text: str) -> bool:
     return any(isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) >= 2
                and [getattr(e, "value", None) for e in node.elts] == list(range(len(node.elts)))
                for node in ast.walk(tree))
+
+
+def _read(statement) -> set:
+    """The names a statement reads (a subscript assignment's `s` in `s[0] = 0` included)."""
+    return {node.id for node in ast.walk(statement) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
 
 
 def _dotted_call(call: ast.Call) -> str:
@@ -2662,8 +2692,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                if a.line < b.line and _apart(a, b) and student.mirrored(a, b)]
     copied = sorted((pair for pair in alike + crossed if student.mirrored(*pair)), key=first)[:COPIED_PAIRS]
     side = sorted(beside + copied, key=lambda pair: not halves(pair))
-    sides = {(a.key, b.key) for a, b in side}
-    pairs = side + [(a, b) for a, b in pairs if (a.key, b.key) not in sides and (b.key, a.key) not in sides]
+    # (then a step of the student's own and the line written for it, changed together -- `s = np.sort(s)`
+    # taken out and `s[0] = 0.0` made `s[-1] = 0.0`: neither alone brings the answers nearer)
+    own = _own_step_pairs(student, function, runnable, new) if tries is None and fallback is None else []
+    sides = {(a.key, b.key) for a, b in side + own}
+    pairs = side + own + [(a, b) for a, b in pairs if (a.key, b.key) not in sides and (b.key, a.key) not in sides]
     # Then each slip's pairs, smallest first, one slip after another in turns (as the single changes):
     # many small slips' pairs would otherwise fill the count before a larger slip's second pair.
     turns = [sorted(((a, b) for a, b in itertools.combinations(same[:8], 2) if new(a, b) and (a, b) not in side),
@@ -2727,6 +2760,26 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                 and _accepted_pair(variant, both, failing):
             return variant.repair([_one_half_enough(variant, both, failing, inputs, references, judged=True)])
     return fallback
+
+
+def _own_step_pairs(student, function, runnable, new) -> list:
+    """Pairs of changes at two statements of the student's own, one after the other, the second reading
+    what the first binds (:meth:`_Student.own_steps`): each statement's first few changes."""
+    steps = student.own_steps(function)
+    wanted = {place for step in steps for place in step}
+    at: dict = {}
+    for mutant in runnable:
+        place = student._place_of(mutant) if wanted else None
+        fix = student.fix(mutant) if place in wanted else None
+        # (a statement made to assign a name to itself is told as the statement taken out, its twin change)
+        if fix is not None and not any(_assigns_itself(after) for _, _, after in fix.changes):
+            at.setdefault(place, []).append(mutant)
+    # (the step taken out first, the next line changed with it: the likeliest of such slips is a step
+    # the reference does not take; then each statement's likeliest changes, as the single changes' turns)
+    pairs = [(i + j, a.operator not in REMOVALS, a, b) for first, second in steps
+             for i, a in enumerate(at.get(first, [])[:STEP_CHANGES])
+             for j, b in enumerate(at.get(second, [])[:STEP_CHANGES]) if new(a, b)]
+    return [(a, b) for *_, a, b in sorted(pairs, key=lambda pair: (pair[1], pair[0]))][:STEP_PAIRS]
 
 
 _STACKING = ("column_stack", "hstack", "vstack", "concatenate", "stack", "append", "dstack", "c_", "r_", "pad")
@@ -2839,6 +2892,8 @@ OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by 
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
 NEIGHBOUR_PAIRS = 8    # of which at two neighbouring items (of one list, tuple or call), tried first
+STEP_CHANGES = 10      # of a statement of the student's own, the changes paired with the next statement's
+STEP_PAIRS = 24        # the most such pairs tried
 COPIED_PAIRS = 16      # and at the same place of two lines written alike (`H1 = ...`, `H2 = ...`), first too
 EVERYWHERE = 6         # the most places of one slip changed at once
 EVERYWHERE_GROUPS = 10  # slips so changed

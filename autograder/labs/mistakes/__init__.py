@@ -16,8 +16,8 @@ the Gradescope zip ships this folder, as neither ships the hidden checks.
 # ------------------------------------------------------------------ a reference def with one line changed
 def reference_def_with(module: str, function: str, line: str, changed: str) -> str:
     """The reference solution's ``def function`` (of ``reference_solutions/<module>.py``, docstring left out)
-    with its one line ``line`` (stripped text) written as ``changed``: a case that is the reference with one
-    slip, without copying the rest of the def into the table."""
+    with its one line ``line`` (stripped text) written as ``changed`` (lines apart by newlines, at that line's
+    indentation): a case that is the reference with one slip, without copying the rest of the def into the table."""
     import ast
     import textwrap
     from pathlib import Path
@@ -34,7 +34,7 @@ def reference_def_with(module: str, function: str, line: str, changed: str) -> s
     if len(matches) != 1:
         raise ValueError(f"{module}.{function}: {line!r} is not one line of the reference's def")
     indent = kept[matches[0]][:len(kept[matches[0]]) - len(kept[matches[0]].lstrip())]
-    kept[matches[0]] = indent + changed
+    kept[matches[0]] = "\n".join(indent + part for part in changed.split("\n"))
     return "\n" + textwrap.indent(textwrap.dedent("\n".join(kept)), " " * 8) + "\n"
 
 

@@ -3,7 +3,7 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
-from . import columns_by_first_axis
+from . import columns_by_first_axis, reference_def_with
 
 # the start of the lab sheet's two-view pipeline, written out: SIFT, Lowe's test, F by RANSAC
 _MATCHED = """
@@ -179,6 +179,12 @@ MISTAKES = {
             return out
         """, ["every point is the true one negated"]),
     # the blind set 1203b's 11/04: K2^T F K1 made rank 2 on the way out, where the API asks for K2^T F K1 itself
+    # the blind set 1204d's 11/06: the singular values sorted (ascending) before the first is zeroed, their
+    # vectors left in numpy's order: mended only by taking the sort out and zeroing the last together
+    "rank 2 by the singular values sorted without their vectors": ("lab11.ex4", reference_def_with(
+        "lab11_two_view", "fundamental_8point", "Fn = U @ np.diag([s[0], s[1], 0.0]) @ Vt",
+        "s = np.sort(s)\ns[0] = 0.0\nFn = U @ np.diag(s) @ Vt"),
+        ["removing `s = np.sort(s)`", "changing `s[0] = 0.0` to `s[2] = 0.0`"]),
     "essential_from_fundamental making E rank 2": ("lab11.ex3", """
         def essential_from_fundamental(F, K1, K2):
             E = np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K1, np.float64)
