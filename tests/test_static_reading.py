@@ -251,6 +251,17 @@ FINDINGS = {
             _, R2, t2, _ = cv2.recoverPose(E, n1, n1)   # normalised first: no camera needed
             return R, t
         """),
+    "np.where's tuple counted as the entries found": ("""
+        def f(errors, t):
+            inliers = np.where(errors < t)
+            return len(inliers) >= 4, len(np.nonzero(errors)), inliers
+        """, """
+        def f(errors, t):
+            inliers = np.where(errors < t)[0]
+            rows, cols = np.nonzero(errors)
+            chosen = np.where(errors < t, errors, 0)
+            return len(inliers), len(rows), len(chosen), len(np.argwhere(errors < t))
+        """),
     "the distortion coefficients are read in the wrong order": ("""
         def f(points, dist):
             k1, k2, k3, p1, p2 = dist

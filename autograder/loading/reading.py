@@ -260,6 +260,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _root_by_a_fraction(name, function)
     found += _grid_unpacked_as_x_y(name, function)
     found += _result_rounded(name, function)
+    found += _where_tuple_counted(name, function)
     found += _state_kept_between_calls(name, function, lists)
     return found
 
@@ -2196,6 +2197,38 @@ def _result_rounded(name, function) -> list[Finding]:
                                 f"{name} (line {line}) returns `{ast.unparse(made)}`, its result rounded to a few "
                                 "decimals: every digit past them is lost (all of them for a small value); round "
                                 "only where a number is printed")]
+    return []
+
+
+# ------------------------------------------------------------------ np.where's tuple counted as indices
+_INDEX_TUPLES = frozenset({"where", "nonzero"})   # (one argument: a tuple of index arrays, one per axis)
+
+
+def _index_tuple(node) -> bool:
+    """``np.where(cond)`` or ``np.nonzero(x)`` (``x.nonzero()``) as written, not indexed: a tuple of arrays."""
+    if not (isinstance(node, ast.Call) and _call_name(node) in _INDEX_TUPLES and not node.keywords):
+        return False
+    of_numpy = _attribute_path(node.func).split(".")[0] in ("np", "numpy")
+    return len(node.args) == (1 if of_numpy else 0 if _call_name(node) == "nonzero" else -1)
+
+
+def _where_tuple_counted(name, function) -> list[Finding]:
+    """``len(np.where(errors < t))`` (or of a name only ever bound so): the tuple np.where returns has one array per
+    axis, so its length is the number of axes (1 for a row of errors), not how many entries pass -- a RANSAC's
+    every hypothesis then has one inlier."""
+    tuples = {target for target, values in _assigned_names(function).items()
+              if values and all(_index_tuple(value) for value in values)}
+    for node in _nodes(function):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "len" \
+                and len(node.args) == 1 and (_index_tuple(node.args[0]) or getattr(node.args[0], "id", None) in tuples):
+            line, counted = _line(node), ast.unparse(node.args[0])
+            made = "" if _index_tuple(node.args[0]) else \
+                f" (`{counted}` is bound to `{ast.unparse(_assigned_names(function)[counted][0])}`)"
+            return [Finding(name, line, "np.where's tuple counted as the entries found",
+                            f"{name} (line {line}) counts with `len({counted})`{made}: np.where (np.nonzero) "
+                            "returns a tuple of index arrays, one per axis, so its length is the number of axes "
+                            "(1 for a 1-D condition), not how many entries pass; take the indices with "
+                            "`np.where(...)[0]` or count with `np.count_nonzero(...)`", certain=True)]
     return []
 
 

@@ -517,6 +517,23 @@ MISTAKES = {
                     best, best_count = H, count
             return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
         """, ["refit h on all the inliers"]),
+    # the blind set 1204d's 08/05: the inliers taken as np.where's tuple, counted by len (always 1)
+    "RANSAC counting np.where's tuple": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            src = np.asarray(src, float); dst = np.asarray(dst, float)
+            rng = np.random.default_rng(seed)
+            best, best_count = None, 0
+            for _ in range(500):
+                idx = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[idx], dst[idx])
+                inliers = np.where(np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold)
+                if len(inliers) > best_count:
+                    best, best_count = inliers, len(inliers)
+            if best_count < 4:
+                return homography_dlt(src, dst), np.ones(len(src), dtype=bool)
+            H = homography_dlt(src[best], dst[best])
+            return H, np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+        """, ["counts with `len(inliers)`", "`np.where(...)[0]`"]),
     "RANSAC comparing distances with the threshold squared": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
             src = np.asarray(src, float); dst = np.asarray(dst, float)
