@@ -1074,6 +1074,23 @@ class _Student:
         matrices = [_matrix_of(node, parents) for node in (node_a, node_b)]
         return matrices[0] is not None and matrices[0] is matrices[1]
 
+    def twins_given(self, first, second) -> bool:
+        """Whether two changes each give one name's use in one of two neighbouring items of a tuple or list
+        a twin name of its own, at the same place of each (`((side - 1) / 2, (side - 1) / 2)` -> `width` in
+        the first, `height` in the second): a pair (x, y) written with one name for both halves."""
+        if not all(len(m.edits) == 1 and m.edits[0][2] == "other_name" and isinstance(m.edits[0][3], str)
+                   for m in (first, second)) or not twin_names(first.edits[0][3], second.edits[0][3]):
+            return False
+        edited = self._edited(first, second)
+        if edited is None:
+            return False
+        (one, other), parents = edited
+        if not (isinstance(one, ast.Name) and isinstance(other, ast.Name) and one.id == other.id):
+            return False
+        items = [_item_of_pair(node, parents) for node in (one, other)]
+        return None not in items and items[0][0] is items[1][0] and abs(items[0][1] - items[1][1]) == 1 \
+            and items[0][2] == items[1][2]
+
     def feeds(self, first, second) -> bool:
         """Whether the statement ``first`` changes assigns a name the statement ``second`` changes reads
         (both in one def, ``first`` above): ``second`` works on what ``first`` makes."""
@@ -1443,6 +1460,20 @@ def _identity_order(text: str) -> bool:
 def _read(statement) -> set:
     """The names a statement reads (a subscript assignment's `s` in `s[0] = 0` included)."""
     return {node.id for node in ast.walk(statement) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
+
+
+def _item_of_pair(node, parents) -> tuple | None:
+    """(the tuple or list ``node`` lies in, the index of its item there, (that item's code with names masked,
+    ``node``'s position in it)), or None where no tuple or list holds it within its statement."""
+    item = node
+    while id(item) in parents:
+        parent, _, index = parents[id(item)]
+        if isinstance(parent, (ast.Tuple, ast.List)) and index is not None:
+            return parent, index, (_shape_of(item), next(i for i, held in enumerate(ast.walk(item)) if held is node))
+        if isinstance(parent, ast.stmt):
+            return None
+        item = parent
+    return None
 
 
 def _dotted_call(call: ast.Call) -> str:
@@ -2691,6 +2722,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                for b in slips.get((where, kind, _crossed_slip(slip)), [])[:40] for a in same[:40]
                if a.line < b.line and _apart(a, b) and student.mirrored(a, b)]
     copied = sorted((pair for pair in alike + crossed if student.mirrored(*pair)), key=first)[:COPIED_PAIRS]
+    # (and a pair (x, y) written with one name for both halves, each given its own twin: `side` -> `width`
+    # in the first item, `height` in the second)
+    copied += _twins_given_pairs(student, runnable, new)[:COPIED_PAIRS]
     side = sorted(beside + copied, key=lambda pair: not halves(pair))
     # (then a step of the student's own and the line written for it, changed together -- `s = np.sort(s)`
     # taken out and `s[0] = 0.0` made `s[-1] = 0.0`: neither alone brings the answers nearer)
@@ -2760,6 +2794,17 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                 and _accepted_pair(variant, both, failing):
             return variant.repair([_one_half_enough(variant, both, failing, inputs, references, judged=True)])
     return fallback
+
+
+def _twins_given_pairs(student, runnable, new) -> list:
+    """Pairs of changes giving one name's uses in two neighbouring items of a tuple or list each a twin name
+    (:meth:`_Student.twins_given`)."""
+    named = [m for m in runnable if len(m.edits) == 1 and m.edits[0][2] == "other_name" and isinstance(m.edits[0][3], str)]
+    payloads = {m.edits[0][3] for m in named}
+    paired = {name for name in payloads if any(twin_names(name, other) for other in payloads if other != name)}
+    named = [m for m in named if m.edits[0][3] in paired]
+    return [(a, b) for a, b in itertools.combinations(named, 2) if a.edits[0][1] != b.edits[0][1]
+            and twin_names(a.edits[0][3], b.edits[0][3]) and new(a, b) and student.twins_given(a, b)]
 
 
 def _own_step_pairs(student, function, runnable, new) -> list:

@@ -84,6 +84,17 @@ MISTAKES = {
             return cv2.merge(moved)
         """, ["the colour channels are reversed", "in r, g, b order"]),
     # the blind set 1204c's 07/03: a cache keyed by less than the answer depends on (the size, not the angle)
+    # the blind set 1204d's 07/03: rotated on a square canvas padded at the bottom right, about the square's
+    # centre: one name for both halves of the pair (x, y)
+    "rotate about the centre of a padded square": ("lab07.ex2", """
+        def rotate(image, angle_deg=45):
+            height, width = image.shape[:2]
+            side = max(height, width)
+            square = np.pad(image, [(0, side - height), (0, side - width)] + [(0, 0)] * (image.ndim - 2))
+            centre = ((side - 1) / 2.0, (side - 1) / 2.0)
+            M = cv2.getRotationMatrix2D(centre, angle_deg, 1.0)
+            return cv2.warpAffine(square, M, (side, side))[:height, :width]
+        """, ["`((width - 1) / 2.0, (height - 1) / 2.0)`"]),
     "rotate caching its matrix by the image size": ("lab07.ex2", """
         _MATRICES = {}
         def rotate(image, angle_deg=45):
