@@ -105,8 +105,11 @@ class Fix:
         if self.operator in _IN_WORDS:   # (told in words: see _Student._moved)
             return self.changes[0][2].replace("{inside}", inside)
         merged = _nested_merged(self.changes)
-        said = [f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
-                for line, before, after in merged]
+        # (a block taken out whole is shown by its first line, `if test: ...`, and told by its lines)
+        blocks = [_BLOCK_SHOWN.match(before) if after == "pass" else None for _, before, after in merged]
+        said = [f"`{block[1]}` (lines {block[2]}{inside})" if block else
+                f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
+                for (line, before, after), block in zip(merged, blocks)]
         verbs = ["removing " if after == "pass" else "changing " for _, _, after in merged]
         # (one verb for changes of one kind; each its own where a step is taken out and a line changed)
         told = verbs[0] + " and ".join(said) if len(set(verbs)) == 1 else \
@@ -126,6 +129,9 @@ class Fix:
         if self.needed:
             return "but a right solution centres there too: the mistake is more likely where the centring is undone"
         return "so the mistake is likely there"
+
+
+_BLOCK_SHOWN = re.compile(r"^(.*: \.\.\.) \(lines (\d+-\d+)\)$")
 
 
 def _drawn_otherwise(values, students) -> bool:
@@ -425,6 +431,29 @@ class _Student:
                             and _bound_names(first) & _read(second):
                         steps.append(places)
         return steps
+
+    def extra_block(self, mutant) -> bool:
+        """Whether the mutant takes out a whole `if` block every simple statement of which is one the reference
+        writes nowhere, in a def otherwise the reference's but for a few statements (:data:`NOVEL_STATEMENTS`): a
+        step of the student's own (a gain applied after a warp), whose removal is the fix -- the changes that make
+        it do nothing (its gain 1, its test never true) only work round it. (In code of their own, every statement
+        is new: a special case's block there holds a slip a change inside it mends.)"""
+        where, ordinal, operator, _ = mutant.edits[0]
+        if operator != "drop_statement" or len(mutant.edits) != 1 or not self.reference_source:
+            return False
+        nodes, _ = self._walk(where)
+        block = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        if not isinstance(block, ast.If):
+            return False
+        written = set().union(*_reference_texts(self.reference_source).values())
+        simple = lambda root: [node for node in ast.walk(root) if isinstance(node, (ast.Assign, ast.AugAssign, ast.Return))  # noqa: E731
+                               or isinstance(node, ast.Expr) and not isinstance(node.value, ast.Constant)]
+        inside = simple(block)
+        lines = {node.lineno for node in inside}
+        outside = [node for node in simple(self._defs[where]) if node.lineno not in lines
+                   and ast.unparse(node) not in written]
+        return bool(inside) and all(ast.unparse(node) not in written for node in inside) \
+            and len(outside) <= NOVEL_STATEMENTS
 
     def follows_reference(self, mutant) -> bool:
         """Whether the change rewrites a statement that is the reference's own, with all it reads
@@ -1429,7 +1458,8 @@ def _undoes_a_step(student, mutant, fix: Fix) -> bool:
     # (and a special case's whole block taken out -- `if ...: ...` -- which a change inside it mends too)
     return student.steers_a_branch(mutant) or any(_identity_order(after) and not _identity_order(before)
                                                   or _assigns_itself(after) for _, before, after in fix.changes) \
-        or (fix.operator == "drop_statement" and fix.changes[0][1].startswith("if ") and " ... (lines " in fix.changes[0][1])
+        or (fix.operator == "drop_statement" and fix.changes[0][1].startswith("if ") and " ... (lines " in fix.changes[0][1]
+            and not student.extra_block(mutant))
 
 
 def _assigns_itself(text: str) -> bool:
@@ -2593,7 +2623,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                     and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, not student.removes_a_mask_guard(pair[0]),
                                      not (refused_type and _converts(pair[0])),
-                                     pair[0].key not in exactly, _undoes_a_step(student, *pair),
+                                     pair[0].key not in exactly, not student.extra_block(pair[0]),
+                                     _undoes_a_step(student, *pair),
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
                                      _inside_a_dropped_term(pair[1], dropped),
@@ -2644,6 +2675,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # change inside a branch beside one steering the code round the branch, likewise)
     fixes = [pair for pair in fixes if not student.bypasses(pair[0])] or fixes
     fixes = [pair for pair in fixes if not _undoes_a_step(student, *pair)] or fixes
+    # (and a step of the student's own taken out whole is told alone: the changes that make it do nothing --
+    # its gain made 1, its test never true -- work round it)
+    fixes = [pair for pair in fixes if student.extra_block(pair[0])] or fixes
     passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:
@@ -3147,6 +3181,12 @@ class _Variants:
         before = _defs(self.student.tree)
         edited = {fn.name: fn for fn in changed if isinstance(fn, ast.FunctionDef) and fn.name in before}
         graded = before.get(self.function)
+        if graded is not None and self.student.extra_block(mutant):
+            # (a step of the student's own taken out whole leaves unused only what fed it -- the mask a gain was
+            # measured over: the step's own parts, no step of the function's disconnected -- unless the API
+            # gave the function a value only that step used)
+            parameters = {a.arg for a in (*graded.args.posonlyargs, *graded.args.args, *graded.args.kwonlyargs)}
+            return bool(parameters & (_live(graded) - _live(edited.get(self.function, graded))))
         return graded is not None and _disconnects(graded, edited.get(self.function, graded),
                                                    frozenset(edited) - {self.function}, frozenset(before))
 

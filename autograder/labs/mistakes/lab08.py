@@ -3,7 +3,7 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
-from . import columns_by_first_axis
+from . import columns_by_first_axis, reference_def_with
 
 # draw_matches' start as the sheet has it: both images side by side on a black canvas (each case draws its lines)
 _SIDE_BY_SIDE = """
@@ -518,6 +518,16 @@ MISTAKES = {
             return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold
         """, ["refit h on all the inliers"]),
     # the blind set 1204d's 08/05: the inliers taken as np.where's tuple, counted by len (always 1)
+    # the blind set 1204d's 08/03: the warp brightened or darkened to the reference's mean (a gain step the
+    # sheet does not ask for): taken out whole, not steered round (its mask made empty, its gain floored to 1)
+    "warp_to_reference matching the reference's brightness": ("lab08.ex2", reference_def_with(
+        "lab08_homographies", "warp_to_reference", "return apply_homography(moving, H, (width, height))",
+        "warped = apply_homography(moving, H, (width, height))\n"
+        "covered = apply_homography(np.ones(moving.shape[:2], np.uint8), H, (width, height)) > 0\n"
+        "if covered.any():\n"
+        "    gain = reference[covered].mean() / max(warped[covered].mean(), 1e-6)\n"
+        "    warped = np.clip(np.round(warped * gain), 0, 255).astype(np.uint8)\n"
+        "return warped"), ["removing `if covered.any(): ...`"]),
     "RANSAC counting np.where's tuple": ("lab08.ex4", """
         def homography_ransac(src, dst, threshold=3.0, seed=None):
             src = np.asarray(src, float); dst = np.asarray(dst, float)
