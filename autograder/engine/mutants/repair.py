@@ -2700,7 +2700,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # (a step the reference never takes, taken out, is the fix itself: told as any change is)
         # (and a guard refusing entries the function goes on to treat, taken out, is the fix too)
         removals = all(fix.operator in REMOVALS and not _extra_step(fix, student.reference_source, function)
-                       and not student.removes_a_mask_guard(mutant) for mutant, fix in fixes)
+                       and not student.removes_a_mask_guard(mutant) and not student.extra_block(mutant)
+                       for mutant, fix in fixes)
         if removals and not complete:
             # (a step taken out, found before the other changes were all tried, is likely a compensation --
             # the division by a w made Z by the matrix's last row -- and nothing says it is not: told by none
