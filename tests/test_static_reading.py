@@ -1271,3 +1271,25 @@ def test_a_rotation_matrix_given_back_to_itself_through_rodrigues_is_named():
     assert wanted in one(code.format(body="R = cv2.Rodrigues(R)[0]"))
     assert wanted not in one(code.format(body="R = cv2.Rodrigues(R)[0] if np.size(R) == 3 else R"))
     assert wanted not in one(code.format(body="rvec, _ = cv2.Rodrigues(R)"))
+
+
+def test_a_matrix_from_a_literal_of_whole_numbers_truncates_a_fractional_scale_without_a_measure():
+    """`T = np.array([[1, 0, 0], ...])` then `T[0, 0] = s` with `s` a ratio of roots: every value written is cut,
+    whatever the outputs show (the finding needs no whole numbers, and is said beside a check's own name); a
+    count written into it needs the measure, and a float literal or a dtype is no finding."""
+    source = """
+        def conditioning(pts):
+            centre = pts.mean(axis=0)
+            s = np.sqrt(2.0) / np.mean(np.linalg.norm(pts - centre, axis=1))
+            T = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1]]{dtype})
+            T[0, 0] = {value}
+            return T
+        """
+    found = read_source(textwrap.dedent(source.format(dtype="", value="s")), frozenset()).findings["conditioning"]
+    assert [(f.mistake, f.needs, f.certain) for f in found] == [
+        ("an integer array: the values written into it are truncated", "", True)]
+    counted = read_source(textwrap.dedent(source.format(dtype="", value="n + k")), frozenset()).findings
+    assert [(f.needs, f.certain) for f in counted.get("conditioning", [])] == [("whole numbers", False)]
+    assert "an integer array: the values written into it are truncated" not in one(source.format(dtype=", dtype=float", value="s"))
+    assert "an integer array: the values written into it are truncated" not in one(
+        source.format(dtype="", value="s").replace("[[1, 0, 0]", "[[1.0, 0, 0]"))

@@ -373,14 +373,15 @@ def _is_integer_dtype(node) -> bool:
 
 
 def _integer_arrays(name, function) -> list[Finding]:
-    """An array made with an integer dtype, then written into with computed values."""
+    """An array made with an integer dtype (or from a literal of whole numbers, ``np.array([[1, 0, 0], ...])``),
+    then written into with computed values. Where what is written is fractional by its making (a division, a
+    root, a mean: a conditioning matrix's scale), the finding needs no measure: every value written is cut."""
     integer_arrays = {}
     for node in _nodes(function):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
-                and isinstance(node.value, ast.Call) \
-                and _call_name(node.value) in {"zeros", "ones", "empty", "eye", "identity", "full", "zeros_like"} \
-                and any(k.arg == "dtype" and _is_integer_dtype(k.value) for k in node.value.keywords):
+                and isinstance(node.value, ast.Call) and (_integer_dtype_given(node.value) or _whole_literal(node.value)):
             integer_arrays[node.targets[0].id] = node
+    bindings = None
     for node in _nodes(function):
         if not isinstance(node, ast.Assign):
             continue
@@ -388,12 +389,49 @@ def _integer_arrays(name, function) -> list[Finding]:
             if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name) \
                     and target.value.id in integer_arrays and _computed(node.value):
                 made = integer_arrays[target.value.id]
+                bindings = _bindings(function) if bindings is None else bindings
+                fractional = _fractional(node.value, bindings)
+                how = "dtype=int" if _integer_dtype_given(made.value) else "from a literal of whole numbers, no dtype"
                 return [Finding(name, _line(made), "an integer array: the values written into it are truncated",
                                 f"{name} (line {_line(made)}) makes {target.value.id} an integer array "
-                                f"(dtype=int) and writes computed values into it (line {_line(node)}): "
+                                f"({how}) and writes computed values into it (line {_line(node)}): "
                                 "their fractions are cut off; make it a float array (dtype=float)",
-                                needs="whole numbers")]   # (values that are whole anyway lose nothing)
+                                needs="" if fractional else "whole numbers", certain=fractional)]
     return []
+
+
+def _integer_dtype_given(call: ast.Call) -> bool:
+    """``np.zeros(..., dtype=int)`` and its kin."""
+    return _call_name(call) in {"zeros", "ones", "empty", "eye", "identity", "full", "zeros_like", "array"} \
+        and any(k.arg == "dtype" and _is_integer_dtype(k.value) for k in call.keywords)
+
+
+def _whole_literal(call: ast.Call) -> bool:
+    """``np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1]])``: an array of a literal of whole numbers, its dtype left to NumPy."""
+    if _call_name(call) not in ("array", "asarray") or len(call.args) != 1 or call.keywords \
+            or not isinstance(call.args[0], (ast.List, ast.Tuple)):
+        return False
+    leaves = [n for n in ast.walk(call.args[0]) if not isinstance(n, (ast.List, ast.Tuple, ast.Load, ast.UnaryOp, ast.USub))]
+    return bool(leaves) and all(isinstance(n, ast.Constant) and type(n.value) is int for n in leaves)
+
+
+_FRACTIONAL_CALLS = frozenset({"sqrt", "mean", "std", "norm", "cos", "sin", "tan", "arctan2", "average", "median"})
+
+
+def _fractional(node, bindings, depth: int = 2) -> bool:
+    """Whether an expression is fractional by its making: a true division, a root, a mean, a norm, a sine, a float
+    constant (or a name whose last binding above is such an expression, followed ``depth`` bindings back)."""
+    for sub in ast.walk(node):
+        if isinstance(sub, ast.BinOp) and isinstance(sub.op, ast.Div) \
+                or isinstance(sub, ast.Call) and _call_name(sub) in _FRACTIONAL_CALLS \
+                or isinstance(sub, ast.Constant) and type(sub.value) is float:
+            return True
+        if isinstance(sub, ast.Name) and depth:
+            above = _binding_above(bindings, sub.id, _line(node))
+            if above is not None and above[2] is None and above[1] is not _UNKNOWN \
+                    and _fractional(above[1], bindings, depth - 1):
+                return True
+    return False
 
 
 def _computed(node) -> bool:

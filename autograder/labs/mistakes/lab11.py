@@ -185,6 +185,26 @@ MISTAKES = {
         "lab11_two_view", "fundamental_8point", "Fn = U @ np.diag([s[0], s[1], 0.0]) @ Vt",
         "s = np.sort(s)\ns[0] = 0.0\nFn = U @ np.diag(s) @ Vt"),
         ["removing `s = np.sort(s)`", "changing `s[0] = 0.0` to `s[2] = 0.0`"]),
+    # the blind set 1204e's 11/06: the conditioning matrix made from a literal of whole numbers, its scale cut to 0
+    "fundamental_8point conditioning into an integer matrix": ("lab11.ex4", """
+        def fundamental_8point(pts1, pts2):
+            pts1 = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
+            pts2 = np.asarray(pts2, dtype=np.float64).reshape(-1, 2)
+            def conditioning(pts):
+                centre = pts.mean(axis=0)
+                s = np.sqrt(2.0) / np.mean(np.linalg.norm(pts - centre, axis=1))
+                T = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1]])
+                T[0, 0] = T[1, 1] = s
+                T[:2, 2] = -s * centre
+                return T
+            T1, T2 = conditioning(pts1), conditioning(pts2)
+            x1 = np.column_stack([pts1, np.ones(len(pts1))]) @ T1.T
+            x2 = np.column_stack([pts2, np.ones(len(pts2))]) @ T2.T
+            A = np.einsum("ni,nj->nij", x2, x1).reshape(-1, 9)
+            U, s, Vt = np.linalg.svd(np.linalg.svd(A)[2][-1].reshape(3, 3))
+            F = T2.T @ U @ np.diag([s[0], s[1], 0.0]) @ Vt @ T1
+            return F / np.linalg.norm(F)
+        """, ["makes T an integer array (from a literal of whole numbers, no dtype)"]),
     "essential_from_fundamental making E rank 2": ("lab11.ex3", """
         def essential_from_fundamental(F, K1, K2):
             E = np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K1, np.float64)
