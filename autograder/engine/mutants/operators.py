@@ -137,6 +137,7 @@ OPERATORS = {
     "logic": ("and", "or", "&", "|"),
     "from_end": ("end", "last", "-1"),                # Vt[len(A) - 1] -> Vt[-1]
     "frame_cross": ("cross", "orthogonal", "axis"),   # e3 = mean / |mean| -> np.cross(e1, e2)
+    "started_empty": ("extra", "first", "start", "empty"),   # rows = [white] then rows.append(...) -> rows = []
     "whole_vector": ("homogeneous", "divid", "third"),   # np.append(e[:2], 1.0) -> e / e[2]
     "quadrant": ("arctan2", "quadrant", "atan2"),   # np.arctan(b / a) -> np.arctan2(b, a)
     "swap_both": ("swap", "exchang", "both", "also"),   # P1, P2 = P2, P1 -> the points exchanged with them
@@ -1260,6 +1261,20 @@ def _make_swap_both(node, payload):
     return new
 
 
+def _grown_after(node, parent, fn) -> bool:
+    """Whether the list literal ``node`` starts a name (`rows = [x]`) that the def then grows in a loop
+    (`rows.append(...)`, `.extend`, `+=`): a list built item by item, started with one item too many?"""
+    if not (isinstance(parent, ast.Assign) and len(parent.targets) == 1 and isinstance(parent.targets[0], ast.Name)) \
+            or fn is None:
+        return False
+    name = parent.targets[0].id
+    return any(isinstance(loop, (ast.For, ast.While)) and any(
+        isinstance(grown, ast.Call) and isinstance(grown.func, ast.Attribute) and grown.func.attr in ("append", "extend")
+        and isinstance(grown.func.value, ast.Name) and grown.func.value.id == name
+        or isinstance(grown, ast.AugAssign) and isinstance(grown.target, ast.Name) and grown.target.id == name
+        for grown in ast.walk(loop)) for loop in ast.walk(fn))
+
+
 def _make_from_end(node, payload):
     return ast.UnaryOp(ast.USub(), copy.deepcopy(node.right))   # len(A) - 1 -> -1: counted from the end
 
@@ -1340,7 +1355,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
-                                              "translation_scaled", "exact_constant")},
+                                              "translation_scaled", "exact_constant", "started_empty")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic, "from_end": _make_from_end, "frame_cross": _make_frame_cross,
@@ -2868,6 +2883,8 @@ def _student_changes(node, parent, parents, words):
     if words.student and isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
         for first, second in _frame_partners(node.targets[0].id, node, words):
             yield "frame_cross", (first, second), ""   # a rotation's row not made orthogonal to the other two
+    if words.student and isinstance(node, ast.List) and node.elts and _grown_after(node, parent, words.fn):
+        yield "started_empty", "[]", ""   # `rows = [white]` then a row appended per bit: an item the result has too many
     if words.student and isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) \
             and isinstance(node.right, ast.Constant) and type(node.right.value) is int and node.right.value > 0 \
             and _size_of_something(node.left) and _indexes_with(node, parent):

@@ -93,6 +93,17 @@ MISTAKES = {
         """, ["`d > 0`"]),
     # the blind set 1204c's 12/07: np.digitize's bins counted from 1 (on gray_code_patterns(16, 4) the same
     # patterns as columns numbered from 1: told apart on the probe)
+    # the blind set 1204e's 12/06: the patterns' list started with an all-white one (a real scanner's reference)
+    "gray code patterns started with a white one": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            width, n_bits = int(width), int(n_bits)
+            k = np.arange(width) * 2 ** n_bits // width
+            g = k ^ (k >> 1)
+            rows = [np.full(width, 255, dtype=np.uint8)]
+            for i in range(n_bits):
+                rows.append((((g >> (n_bits - 1 - i)) & 1) * 255).astype(np.uint8))
+            return np.array(rows)
+        """, ["`[np.full(width, 255, dtype=np.uint8)]` to `[]`"]),
     "gray code stripes by np.digitize, counted from 1": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
             width, n_bits = int(width), int(n_bits)
