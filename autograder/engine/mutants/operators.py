@@ -138,6 +138,7 @@ OPERATORS = {
     "from_end": ("end", "last", "-1"),                # Vt[len(A) - 1] -> Vt[-1]
     "frame_cross": ("cross", "orthogonal", "axis"),   # e3 = mean / |mean| -> np.cross(e1, e2)
     "started_empty": ("extra", "first", "start", "empty"),   # rows = [white] then rows.append(...) -> rows = []
+    "colour_scale": ("255", "white", "colour", "color", "scale"),   # cv2.line(grey, p, q, 1.0) -> 255: a [0, 1] colour   # rows = [white] then rows.append(...) -> rows = []
     "whole_vector": ("homogeneous", "divid", "third"),   # np.append(e[:2], 1.0) -> e / e[2]
     "quadrant": ("arctan2", "quadrant", "atan2"),   # np.arctan(b / a) -> np.arctan2(b, a)
     "swap_both": ("swap", "exchang", "both", "also"),   # P1, P2 = P2, P1 -> the points exchanged with them
@@ -1261,6 +1262,30 @@ def _make_swap_both(node, payload):
     return new
 
 
+DRAWING_COLOUR_AT = {"line": 3, "arrowedLine": 3, "rectangle": 3, "circle": 3, "drawMarker": 2, "ellipse": 6,
+                     "polylines": 3, "fillPoly": 2, "fillConvexPoly": 2, "putText": 5}   # OpenCV's colour argument
+
+
+def _drawn_colour(node, parents, fn) -> bool:
+    """Whether ``node`` is (part of) the colour an OpenCV drawing call is given: inside its colour argument, or in
+    the value of a name that argument is (`colour = ... if canvas.ndim == 3 else 1.0`, then `cv2.line(..., colour)`)."""
+    holder = node
+    while id(holder) in parents and not isinstance(holder, ast.stmt):
+        parent, field, index = parents[id(holder)]
+        if isinstance(parent, ast.Call) and field == "args" and _dotted(parent.func).startswith(("cv2.", "cv.")) \
+                and DRAWING_COLOUR_AT.get(_dotted(parent.func).rsplit(".", 1)[-1]) == index:
+            return True
+        holder = parent
+    if not (isinstance(holder, ast.Assign) and len(holder.targets) == 1 and isinstance(holder.targets[0], ast.Name)) \
+            or fn is None:
+        return False
+    name = holder.targets[0].id
+    return any(isinstance(call, ast.Call) and _dotted(call.func).startswith(("cv2.", "cv."))
+               and isinstance(at := DRAWING_COLOUR_AT.get(_dotted(call.func).rsplit(".", 1)[-1]), int)
+               and len(call.args) > at and isinstance(call.args[at], ast.Name) and call.args[at].id == name
+               for call in ast.walk(fn))
+
+
 def _grown_after(node, parent, fn) -> bool:
     """Whether the list literal ``node`` starts a name (`rows = [x]`) that the def then grows in a loop
     (`rows.append(...)`, `.extend`, `+=`): a list built item by item, started with one item too many?"""
@@ -1355,7 +1380,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
-                                              "translation_scaled", "exact_constant", "started_empty")},
+                                              "translation_scaled", "exact_constant", "started_empty", "colour_scale")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic, "from_end": _make_from_end, "frame_cross": _make_frame_cross,
@@ -2883,6 +2908,9 @@ def _student_changes(node, parent, parents, words):
     if words.student and isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
         for first, second in _frame_partners(node.targets[0].id, node, words):
             yield "frame_cross", (first, second), ""   # a rotation's row not made orthogonal to the other two
+    if words.student and isinstance(node, ast.Constant) and type(node.value) in (int, float) and node.value == 1 \
+            and _drawn_colour(node, parents, words.fn):
+        yield "colour_scale", "255", ""   # a colour of 1 (a [0, 1] image's white) drawn on a uint8 image
     if words.student and isinstance(node, ast.List) and node.elts and _grown_after(node, parent, words.fn):
         yield "started_empty", "[]", ""   # `rows = [white]` then a row appended per bit: an item the result has too many
     if words.student and isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) \

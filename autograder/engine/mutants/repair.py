@@ -45,7 +45,7 @@ from ..hints import RANDOM_DRAWS
 from ..inherited import SHARED_FAILING
 from . import anchors, naming
 from .helper import HelperFailed
-from .operators import (_MAKE, _MOVES, _defs, _derived_names, _dotted, _entry_of_literal, _parents, _replace, mutants_of,
+from .operators import (DRAWING_COLOUR_AT, _MAKE, _MOVES, _defs, _derived_names, _dotted, _entry_of_literal, _parents, _replace, mutants_of,
                         mutated_defs, runs, twin_names, unpacked_items)
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
@@ -2065,8 +2065,7 @@ def _widened(call, defaults=(), factors=(4.0,)) -> list:
 
 
 # the colour's position among an OpenCV drawing function's arguments
-_COLOUR_AT = {"line": 3, "arrowedLine": 3, "rectangle": 3, "circle": 3, "drawMarker": 2, "ellipse": 6,
-              "polylines": 3, "fillPoly": 2, "fillConvexPoly": 2, "putText": 5}
+_COLOUR_AT = DRAWING_COLOUR_AT
 
 
 def _bound_names(node) -> set:

@@ -205,6 +205,10 @@ MISTAKES = {
             F = T2.T @ U @ np.diag([s[0], s[1], 0.0]) @ Vt @ T1
             return F / np.linalg.norm(F)
         """, ["makes T an integer array (from a literal of whole numbers, no dtype)"]),
+    # the blind set 1204e's 11/03: a grey image's lines drawn with 1.0 (a [0, 1] image's white), nearly black
+    "epipolar lines drawn on a grey image with the colour 1.0": ("lab11.ex2", reference_def_with(
+        "lab11_two_view", "draw_epipolar_lines", "colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 255",
+        "colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 1.0"), ["else 1.0` to `", "else 255`"]),
     "essential_from_fundamental making E rank 2": ("lab11.ex3", """
         def essential_from_fundamental(F, K1, K2):
             E = np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K1, np.float64)
