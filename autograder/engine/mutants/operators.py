@@ -137,7 +137,6 @@ OPERATORS = {
     "logic": ("and", "or", "&", "|"),
     "from_end": ("end", "last", "-1"),                # Vt[len(A) - 1] -> Vt[-1]
     "frame_cross": ("cross", "orthogonal", "axis"),   # e3 = mean / |mean| -> np.cross(e1, e2)
-    "started_empty": ("extra", "first", "start", "empty"),   # rows = [white] then rows.append(...) -> rows = []
     "colour_scale": ("255", "white", "colour", "color", "scale"),   # cv2.line(grey, p, q, 1.0) -> 255: a [0, 1] colour   # rows = [white] then rows.append(...) -> rows = []
     "whole_vector": ("homogeneous", "divid", "third"),   # np.append(e[:2], 1.0) -> e / e[2]
     "quadrant": ("arctan2", "quadrant", "atan2"),   # np.arctan(b / a) -> np.arctan2(b, a)
@@ -1286,20 +1285,6 @@ def _drawn_colour(node, parents, fn) -> bool:
                for call in ast.walk(fn))
 
 
-def _grown_after(node, parent, fn) -> bool:
-    """Whether the list literal ``node`` starts a name (`rows = [x]`) that the def then grows in a loop
-    (`rows.append(...)`, `.extend`, `+=`): a list built item by item, started with one item too many?"""
-    if not (isinstance(parent, ast.Assign) and len(parent.targets) == 1 and isinstance(parent.targets[0], ast.Name)) \
-            or fn is None:
-        return False
-    name = parent.targets[0].id
-    return any(isinstance(loop, (ast.For, ast.While)) and any(
-        isinstance(grown, ast.Call) and isinstance(grown.func, ast.Attribute) and grown.func.attr in ("append", "extend")
-        and isinstance(grown.func.value, ast.Name) and grown.func.value.id == name
-        or isinstance(grown, ast.AugAssign) and isinstance(grown.target, ast.Name) and grown.target.id == name
-        for grown in ast.walk(loop)) for loop in ast.walk(fn))
-
-
 def _make_from_end(node, payload):
     return ast.UnaryOp(ast.USub(), copy.deepcopy(node.right))   # len(A) - 1 -> -1: counted from the end
 
@@ -1380,7 +1365,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
-                                              "translation_scaled", "exact_constant", "started_empty", "colour_scale")},
+                                              "translation_scaled", "exact_constant", "colour_scale")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
          "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic, "from_end": _make_from_end, "frame_cross": _make_frame_cross,
@@ -2911,8 +2896,6 @@ def _student_changes(node, parent, parents, words):
     if words.student and isinstance(node, ast.Constant) and type(node.value) in (int, float) and node.value == 1 \
             and _drawn_colour(node, parents, words.fn):
         yield "colour_scale", "255", ""   # a colour of 1 (a [0, 1] image's white) drawn on a uint8 image
-    if words.student and isinstance(node, ast.List) and node.elts and _grown_after(node, parent, words.fn):
-        yield "started_empty", "[]", ""   # `rows = [white]` then a row appended per bit: an item the result has too many
     if words.student and isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) \
             and isinstance(node.right, ast.Constant) and type(node.right.value) is int and node.right.value > 0 \
             and _size_of_something(node.left) and _indexes_with(node, parent):
@@ -4957,25 +4940,23 @@ def _raw_beside_derived(node, words):
 
 
 def _started_with_an_item(node, words):
-    """A list started with the first item's result where a loop over every item appends it too
-    (`views = [project(X, fs[0])]`, then `for f in fs: views.append(project(X, f))`): the first item
-    twice. Offered: the list started empty."""
-    if not (isinstance(node, ast.List) and len(node.elts) == 1 and isinstance(node.elts[0], ast.Call)):
+    """A list started with an item where a loop then appends to it (`views = [project(X, fs[0])]`, then `for f in fs:
+    views.append(project(X, f))`: the first item twice; `rows = [white]` then a row per bit: a row too many). Offered:
+    the list started empty."""
+    if not (isinstance(node, ast.List) and node.elts):
         return
     parent = _parent_of(node, words)
     if not (isinstance(parent, ast.Assign) and parent.value is node and len(parent.targets) == 1
             and isinstance(parent.targets[0], ast.Name)):
         return
-    if not hasattr(words, "appended_in_loops"):   # (read once per def: (loop's line, list, function appended))
-        words.appended_in_loops = {(loop.lineno, c.func.value.id, _dotted(c.args[0].func))
-                                   for loop in ast.walk(words.fn) if isinstance(loop, ast.For)
+    if not hasattr(words, "appended_in_loops"):   # (read once per def: (loop's line, list appended to))
+        words.appended_in_loops = {(loop.lineno, c.func.value.id)
+                                   for loop in ast.walk(words.fn) if isinstance(loop, (ast.For, ast.While))
                                    for statement in loop.body for c in ast.walk(statement)
                                    if isinstance(c, ast.Call) and isinstance(c.func, ast.Attribute)
-                                   and c.func.attr == "append" and isinstance(c.func.value, ast.Name) and c.args
-                                   and isinstance(c.args[0], ast.Call)}
-    name, called = parent.targets[0].id, _dotted(node.elts[0].func)
-    if any(line > parent.lineno and (name, called) == (appended, function)
-           for line, appended, function in words.appended_in_loops):
+                                   and c.func.attr in ("append", "extend") and isinstance(c.func.value, ast.Name) and c.args}
+    name = parent.targets[0].id
+    if any(line > parent.lineno and name == appended for line, appended in words.appended_in_loops):
         yield "initial", "[]", ""
 
 
