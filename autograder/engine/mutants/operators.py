@@ -693,6 +693,9 @@ def _bare(node):
     return node.operand if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) else node
 
 
+_GATHERS = frozenset({"take_along_axis", "take", "choose"})   # NumPy calls that pick a result's values anew
+
+
 def _make_unwrap(node, payload):
     if payload == "method":   # depth.mean() -> depth
         return copy.deepcopy(node.func.value)
@@ -2958,6 +2961,9 @@ def _student_changes(node, parent, parents, words):
         yield "unwrap", None, ""
     if isinstance(node.func, ast.Attribute) and node.func.attr in _WHOLE_METHODS and not node.args and not node.keywords:
         yield "unwrap", "method", ""   # one value of the whole array where each item's own belongs (a mean depth)
+    if short in _GATHERS and prefix in ("np.", "numpy.") and node.args and isinstance(node.args[0], ast.Name) \
+            and isinstance(parent, ast.Return):
+        yield "unwrap", None, ""   # a result gathered anew before it is returned: `np.take_along_axis(depth, source)`
     if _rounded_to_decimals(node, dotted):
         yield "unwrap", None, ""   # a value rounded to a few decimals where the exact one belongs: `np.round(c, 2)`
     if dotted in ("np.clip", "numpy.clip") and node.args and not (isinstance(parent, ast.Attribute) and parent.attr == "astype"):

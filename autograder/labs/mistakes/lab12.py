@@ -94,6 +94,16 @@ MISTAKES = {
     # the blind set 1204c's 12/07: np.digitize's bins counted from 1 (on gray_code_patterns(16, 4) the same
     # patterns as columns numbered from 1: told apart on the probe)
     # the blind set 1204e's 12/06: the patterns' list started with an all-white one (a real scanner's reference)
+    # the blind set 1204e's 12/02: invalid pixels filled with the depth of the nearest valid one on their left
+    "depth_from_disparity filling the holes from the left": ("lab12.ex2", """
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.array(disparity, dtype=np.float64)
+            valid = np.isfinite(d) & (d > 0)
+            depth = np.zeros(d.shape)
+            depth[valid] = float(f) * float(baseline) / d[valid]
+            source = np.maximum.accumulate(np.where(valid, np.arange(d.shape[-1]), 0), axis=-1)
+            return np.take_along_axis(depth, source, axis=-1)
+        """, ["`np.take_along_axis(depth, source, axis=-1)` to `depth`"]),
     "gray code patterns started with a white one": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
             width, n_bits = int(width), int(n_bits)
