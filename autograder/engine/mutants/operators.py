@@ -1175,7 +1175,35 @@ def _make_jump_size(node, payload):
     return ast.Call(_name("np.abs"), [ast.BinOp(copy.deepcopy(node.left), ast.Sub(), copy.deepcopy(node.comparators[0]))], [])
 
 
+def _nan_fill_minimised(node, parents, words) -> bool:
+    """Whether ``node`` is NaN (`np.nan`) assigned into a table (`costs = np.full(s, np.nan)`, `costs[d, :, :d] = np.nan`)
+    whose smallest entries the def takes, or which it returns to a def of the module that takes an argmin: a NaN
+    is what np.argmin picks first, where an entry without a value must lose."""
+    if _dotted(node) not in ("np.nan", "numpy.nan", "np.NaN", "math.nan"):
+        return False
+    statement = node
+    while id(statement) in parents and not isinstance(statement, ast.stmt):
+        statement = parents[id(statement)][0]
+    if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1):
+        return False
+    target = statement.targets[0]
+    root = target.value if isinstance(target, ast.Subscript) else target
+    if not isinstance(root, ast.Name):
+        return False
+    fn = _def_of(statement, parents)
+    if _minimised(ast.Assign([ast.Name(root.id, ast.Store())], node), {id(node): (fn, "body", 0)}):
+        return True
+    returned = any(isinstance(r, ast.Return) and isinstance(r.value, ast.Name) and r.value.id == root.id for r in ast.walk(fn))
+    return returned and isinstance(fn, ast.FunctionDef) and any(
+        any(isinstance(c, ast.Name) and c.id == fn.name for c in ast.walk(other))   # (called, or chosen to be)
+        and any(isinstance(c, ast.Call) and _dotted(c.func).rsplit(".", 1)[-1] in ("argmin", "nanargmin", "amin")
+                for c in ast.walk(other))
+        for other in words.module_defs.values() if other is not fn)
+
+
 def _make_fill_inf(node, payload):
+    if payload == "nan":   # np.nan -> np.inf
+        return _name("np.inf")
     # np.zeros(s) -> np.full(s, np.inf); np.zeros_like(x) -> np.full_like(x, np.inf, dtype=np.float64)
     if _dotted(node.func).endswith("zeros_like"):
         return ast.Call(_name("np.full_like"), [copy.deepcopy(node.args[0]), _name("np.inf")],
@@ -2896,6 +2924,8 @@ def _student_changes(node, parent, parents, words):
     if words.student and isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
         for first, second in _frame_partners(node.targets[0].id, node, words):
             yield "frame_cross", (first, second), ""   # a rotation's row not made orthogonal to the other two
+    if words.student and _nan_fill_minimised(node, parents, words):
+        yield "fill_inf", "nan", ""   # a cost NaN where the argmin must lose it: NumPy's argmin picks the first NaN
     if words.student and isinstance(node, ast.Constant) and type(node.value) in (int, float) and node.value == 1 \
             and _drawn_colour(node, parents, words.fn):
         yield "colour_scale", "255", ""   # a colour of 1 (a [0, 1] image's white) drawn on a uint8 image

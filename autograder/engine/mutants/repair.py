@@ -2767,11 +2767,13 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     pairs = side + own + [(a, b) for a, b in pairs if (a.key, b.key) not in sides and (b.key, a.key) not in sides]
     # Then each slip's pairs, smallest first, one slip after another in turns (as the single changes):
     # many small slips' pairs would otherwise fill the count before a larger slip's second pair.
-    turns = [sorted(((a, b) for a, b in itertools.combinations(same[:8], 2) if new(a, b) and (a, b) not in side),
-                    key=size) for same in slips.values()]
-    twice = sorted(((turn, pair) for group in turns for turn, pair in enumerate(group)),
-                   key=lambda item: (item[0], size(item[1])))
-    pairs += [pair for _, pair in twice[:SAME_SLIP_PAIRS]]
+    # (a slip made at exactly two places first: both of them are the whole slip -- `np.nan` where `np.inf` belongs,
+    # where the table is made and where its border is marked -- where a slip of many places is half made by a pair)
+    turns = [(len(same) > 2, sorted(((a, b) for a, b in itertools.combinations(same[:8], 2) if new(a, b) and (a, b) not in side),
+                                    key=size)) for same in slips.values()]
+    twice = sorted(((turn, many, pair) for many, group in turns for turn, pair in enumerate(group)),
+                   key=lambda item: (item[0], item[1], size(item[2])))
+    pairs += [pair for *_, pair in twice[:SAME_SLIP_PAIRS]]
     # One slip made at every place it can be (three to a few: rows written at `i`, `i + 1` of A and of
     # b where `2 * i`, `2 * i + 1` belong), before any pair: a pair mends half of it.
     # (those made line after line first, as a block of rows is written; then the smallest changes)

@@ -95,6 +95,16 @@ MISTAKES = {
     # patterns as columns numbered from 1: told apart on the probe)
     # the blind set 1204e's 12/06: the patterns' list started with an all-white one (a real scanner's reference)
     # the blind set 1204e's 12/02: invalid pixels filled with the depth of the nearest valid one on their left
+    # the blind set 1204e's 12/04: the SSD volume's cells without a partner marked NaN, which np.argmin picks first
+    "block matching's costs without a partner marked NaN": ("lab12.ex4", """
+        def _ssd_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.nan)
+            for d in range(min(max_disparity, width - 1) + 1):
+                costs[d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size)
+                costs[d, :, :d] = np.nan
+            return costs
+        """, ["left of the right image's first column"]),   # (the change is told beside it: tests/test_repair.py)
     "depth_from_disparity filling the holes from the left": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
             d = np.array(disparity, dtype=np.float64)
