@@ -2190,7 +2190,7 @@ def _changes(node, parents, words: _Words, line):
             else:
                 yield "drop_factor", "left", _placed("the left factor of a matrix product is missing", place())
                 yield "drop_factor", "right", _placed("the right factor of a matrix product is missing", place())
-        if isinstance(node.op, ast.Sub) and _is_mean(node.right, words):
+        if isinstance(node.op, ast.Sub) and (_is_mean(node.right, words) or words.student and _is_image_centre(node.right, words)):
             yield "drop_centring", None, _centring_phrase(node, what)
         if isinstance(node.op, ast.Div):
             yield "drop_division", None, _division_phrase(node, what) or _placed(
@@ -5781,6 +5781,23 @@ def _is_mean(node, words: _Words, depth: int = 0) -> bool:
     if isinstance(node, ast.Subscript):
         return _is_mean(node.value, words, depth + 1)
     return False
+
+
+_CENTRE_NAMES = frozenset({"cx", "cy", "u0", "v0", "c_x", "c_y", "ox", "oy"})
+
+
+def _is_image_centre(node, words: _Words) -> bool:
+    """Whether ``node`` is a principal point's or an image centre's coordinate the student's code subtracts: `cx`,
+    or a name bound once to half a size (`(width - 1) / 2`): coordinates made relative to it, to be made absolute
+    again where they become pixel indices."""
+    if not isinstance(node, ast.Name):
+        return False
+    if node.id.lower() in _CENTRE_NAMES:
+        return True
+    defined = words.definitions.get(node.id, ())
+    value = defined[0][1] if len(defined) == 1 and defined[0][2] is None else None
+    return isinstance(value, ast.BinOp) and isinstance(value.op, ast.Div) and isinstance(value.right, ast.Constant) \
+        and value.right.value == 2
 
 
 def _trig_argument(node, parent) -> bool:

@@ -96,6 +96,11 @@ MISTAKES = {
     # the blind set 1204e's 12/06: the patterns' list started with an all-white one (a real scanner's reference)
     # the blind set 1204e's 12/02: invalid pixels filled with the depth of the nearest valid one on their left
     # the blind set 1204e's 12/04: the SSD volume's cells without a partner marked NaN, which np.argmin picks first
+    # the blind set 1204e's 12/07: camera x taken relative to the principal point, the centre never added back
+    "structured light in coordinates about the centre, never made columns again": ("lab12.ex6", reference_def_with(
+        "lab12_stereo", "simulate_structured_light", "u = np.broadcast_to(np.arange(width, dtype=np.float64), depth.shape)",
+        "cx = (width - 1) / 2.0\nu = np.broadcast_to(np.arange(width, dtype=np.float64) - cx, depth.shape)"),
+        ["the mistake is more likely where the centring is undone"]),
     "block matching's costs without a partner marked NaN": ("lab12.ex4", """
         def _ssd_volume(left, right, max_disparity, block_size):
             height, width = left.shape
