@@ -2755,7 +2755,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     crossed = [(a, b) for (where, kind, slip), same in slips.items() if kind == "other_name"
                for b in slips.get((where, kind, _crossed_slip(slip)), [])[:40] for a in same[:40]
                if a.line < b.line and _apart(a, b) and student.mirrored(a, b)]
-    copied = sorted((pair for pair in alike + crossed if student.mirrored(*pair)), key=first)[:COPIED_PAIRS]
+    mirrored = sorted((pair for pair in alike + crossed if student.mirrored(*pair)), key=first)
+    copied = mirrored[:COPIED_PAIRS]
     # (and a pair (x, y) written with one name for both halves, each given its own twin: `side` -> `width`
     # in the first item, `height` in the second)
     copied += _twins_given_pairs(student, runnable, new)[:COPIED_PAIRS]
@@ -2774,6 +2775,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     twice = sorted(((turn, many, pair) for many, group in turns for turn, pair in enumerate(group)),
                    key=lambda item: (item[0], item[1], size(item[2])))
     pairs += [pair for *_, pair in twice[:SAME_SLIP_PAIRS]]
+    # (and, while the time lasts -- a function quick to call --, the rest of those the code shows, then the rest of
+    # each slip's pairs: `flip @ inv(K1)` and `flip @ inv(K2)`, a step copied into two lines written alike, come
+    # after many smaller pairs of one slip)
+    pairs += [pair for pair in mirrored[COPIED_PAIRS:] if (pair[0].key, pair[1].key) not in sides] \
+        + [pair for *_, pair in twice[SAME_SLIP_PAIRS:]]
     # One slip made at every place it can be (three to a few: rows written at `i`, `i + 1` of A and of
     # b where `2 * i`, `2 * i + 1` belong), before any pair: a pair mends half of it.
     # (those made line after line first, as a block of rows is written; then the smallest changes)

@@ -209,6 +209,15 @@ MISTAKES = {
     "epipolar lines drawn on a grey image with the colour 1.0": ("lab11.ex2", reference_def_with(
         "lab11_two_view", "draw_epipolar_lines", "colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 255",
         "colour = _PALETTE[i % len(_PALETTE)] if canvas.ndim == 3 else 1.0"), ["else 1.0` to `", "else 255`"]),
+    # the blind set 1204e's 11/05: normalised coordinates with y pointing up (a lecture's camera frame)
+    "essential_8point with y pointing up in both views": ("lab11.ex3", """
+        def essential_8point(pts1, pts2, K1, K2):
+            flip = np.diag([1.0, -1.0, 1.0])
+            x1 = _homogeneous(pts1) @ (flip @ np.linalg.inv(K1)).T
+            x2 = _homogeneous(pts2) @ (flip @ np.linalg.inv(K2)).T
+            U, _, Vt = np.linalg.svd(_eight_point_core(x1, x2))
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """, ["`flip @ np.linalg.inv(K1)` to `np.linalg.inv(K1)`", "`flip @ np.linalg.inv(K2)` to `np.linalg.inv(K2)`"]),
     "essential_from_fundamental making E rank 2": ("lab11.ex3", """
         def essential_from_fundamental(F, K1, K2):
             E = np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K1, np.float64)
