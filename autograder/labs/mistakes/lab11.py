@@ -218,6 +218,11 @@ MISTAKES = {
             U, _, Vt = np.linalg.svd(_eight_point_core(x1, x2))
             return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
         """, ["`flip @ np.linalg.inv(K1)` to `np.linalg.inv(K1)`", "`flip @ np.linalg.inv(K2)` to `np.linalg.inv(K2)`"]),
+    # the blind set 1204e's 11/02: the F given made rank 2 before its lines are taken (the API's lines are F x)
+    "epipolar lines of F made rank 2 first": ("lab11.ex2", reference_def_with(
+        "lab11_two_view", "epipolar_lines", "lines = _homogeneous(pts1) @ np.asarray(F, np.float64).T",
+        "U, s, Vt = np.linalg.svd(np.asarray(F, np.float64))\nF = U @ np.diag([s[0], s[1], 0.0]) @ Vt\n"
+        "lines = _homogeneous(pts1) @ F.T"), ["removing `F = U @ np.diag([s[0], s[1], 0.0]) @ Vt`"]),
     "essential_from_fundamental making E rank 2": ("lab11.ex3", """
         def essential_from_fundamental(F, K1, K2):
             E = np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K1, np.float64)
