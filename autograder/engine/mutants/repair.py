@@ -443,7 +443,8 @@ class _Student:
             return False
         nodes, _ = self._walk(where)
         block = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
-        if not isinstance(block, ast.If):
+        # (an early return or raise makes the block a special case, a path of its own: a change inside it mends it)
+        if not isinstance(block, ast.If) or any(isinstance(node, (ast.Return, ast.Raise)) for node in ast.walk(block)):
             return False
         written = set().union(*_reference_texts(self.reference_source).values())
         simple = lambda root: [node for node in ast.walk(root) if isinstance(node, (ast.Assign, ast.AugAssign, ast.Return))  # noqa: E731
@@ -454,6 +455,14 @@ class _Student:
                    and ast.unparse(node) not in written]
         return bool(inside) and all(ast.unparse(node) not in written for node in inside) \
             and len(outside) <= NOVEL_STATEMENTS
+
+    def inside_block(self, block_mutant, fix: Fix) -> bool:
+        """Whether every line ``fix`` changes lies in the body of the `if` block ``block_mutant`` takes out."""
+        where, ordinal, _, _ = block_mutant.edits[0]
+        nodes, _ = self._walk(where)
+        block = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        return isinstance(block, ast.If) and fix.where == where and all(
+            block.body[0].lineno <= line <= (block.end_lineno or block.lineno) for line, _, _ in fix.changes)
 
     def follows_reference(self, mutant) -> bool:
         """Whether the change rewrites a statement that is the reference's own, with all it reads
@@ -2676,7 +2685,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     fixes = [pair for pair in fixes if not _undoes_a_step(student, *pair)] or fixes
     # (and a step of the student's own taken out whole is told alone: the changes that make it do nothing --
     # its gain made 1, its test never true -- work round it)
-    fixes = [pair for pair in fixes if student.extra_block(pair[0])] or fixes
+    # (unless a change inside it does to a twin what the block does to one -- `dst[order]` beside `src[order]`: the
+    # step was meant, and half made)
+    blocks = [pair for pair in fixes if student.extra_block(pair[0])]
+    halves_made = [pair for pair in fixes if pair[1].operator in ADDITIONS
+                   and any(student.inside_block(block, pair[1]) for block, _ in blocks)]
+    fixes = halves_made or blocks or fixes
     passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:
