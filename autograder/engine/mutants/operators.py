@@ -3262,6 +3262,10 @@ def _threshold_changes(node: ast.Compare):
         # (`d > np.nanmin(d)`: a threshold the data sets -- its own smallest value -- where a fixed one belongs)
         yield "compare", (type(node.ops[0]).__name__, 0), ""
         return
+    if isinstance(threshold, ast.Name) and isinstance(node.ops[0], (ast.Gt, ast.GtE)):
+        # (`Z > f`: a test against a value of the problem's where 0 belongs -- in front of the camera is Z > 0)
+        yield "compare", (type(node.ops[0]).__name__, 0), ""
+        return
     if not (isinstance(threshold, ast.Constant) and type(threshold.value) in (int, float)):
         return
     value = threshold.value

@@ -27,6 +27,16 @@ _APERTURE = """
 """
 
 MISTAKES = {
+    # the blind set 1204e's 09/01: a point counted in front of the camera only beyond the focal length
+    "pinhole_project keeping only points beyond Z = f": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            Z = X[:, 2]
+            out = np.full((len(X), 2), np.nan)
+            ok = Z > f
+            out[ok] = f * X[ok, :2] / Z[ok, None]
+            return out[0] if single else out
+        """, ["`ok = Z > f` to `ok = Z > 0`"]),
     # the blind set 1204d's 09/06: the tangential terms added only when both coefficients are non-zero
     "distortion's tangential terms only when both are non-zero": ("lab09.ext2", """
         def distort_points(points, dist):
