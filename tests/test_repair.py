@@ -4565,3 +4565,13 @@ def test_a_slip_made_at_exactly_two_places_is_mended_at_both_beside_a_checks_own
     assert told, [c.message for c in failed]
     assert "`costs[d, :, :d] = np.nan` to `costs[d, :, :d] = np.inf`" in told[0].message
     assert "np.nan)` to `np.full((max_disparity + 1, height, width), np.inf)`" in told[0].message
+
+
+def test_a_name_given_where_it_makes_a_call_take_one_name_twice_is_no_fix():
+    """`cv2.addWeighted(overlay, 0.6, image, 0.4, 0)` -> `(overlay, 0.6, overlay, 0.4, 0)` blends the drawing with
+    itself: it works round the blend (blind set 1204e's 09/06), where a name made another's in a call that keeps two
+    names apart may be the slip."""
+    blended = repair.Fix(((105, "cv2.addWeighted(overlay, 0.6, image, 0.4, 0)",
+                           "cv2.addWeighted(overlay, 0.6, overlay, 0.4, 0)"),), "draw_points", "other_name", ())
+    apart = repair.Fix(((12, "f(pts1, pts1)", "f(pts1, pts2)"),), "graded", "other_name", ())
+    assert repair._one_argument_twice(blended) and not repair._one_argument_twice(apart)

@@ -699,6 +699,8 @@ _GATHERS = frozenset({"take_along_axis", "take", "choose"})   # NumPy calls that
 def _make_unwrap(node, payload):
     if payload == "method":   # depth.mean() -> depth
         return copy.deepcopy(node.func.value)
+    if payload == "third":   # cv2.addWeighted(a, 0.6, b, 0.4, 0) -> b
+        return copy.deepcopy(node.args[2])
     if payload == "clamped":   # np.maximum(d, 1.0) -> d
         return copy.deepcopy(next(a for a in node.args if not isinstance(_bare(a), ast.Constant)))
     inner = node.args[0]
@@ -2991,6 +2993,9 @@ def _student_changes(node, parent, parents, words):
         yield "unwrap", None, ""
     if isinstance(node.func, ast.Attribute) and node.func.attr in _WHOLE_METHODS and not node.args and not node.keywords:
         yield "unwrap", "method", ""   # one value of the whole array where each item's own belongs (a mean depth)
+    if short == "addWeighted" and prefix in ("cv2.", "cv.") and len(node.args) >= 3:
+        yield "unwrap", None, ""      # a drawing blended with the image it was drawn on a copy of: the drawing itself
+        yield "unwrap", "third", ""   # (or the image, where the blend was to leave it as it was)
     if short in _GATHERS and prefix in ("np.", "numpy.") and node.args and isinstance(node.args[0], ast.Name) \
             and isinstance(parent, ast.Return):
         yield "unwrap", None, ""   # a result gathered anew before it is returned: `np.take_along_axis(depth, source)`

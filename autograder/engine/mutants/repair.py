@@ -1471,6 +1471,23 @@ def _undoes_a_step(student, mutant, fix: Fix) -> bool:
             and not student.extra_block(mutant))
 
 
+def _one_argument_twice(fix: Fix) -> bool:
+    """Whether a name given in another's place makes a call take one name at two of its positions where it took
+    two (`cv2.addWeighted(overlay, 0.6, image, 0.4, 0)` -> `(overlay, 0.6, overlay, ...)`: a blend of the drawing
+    with itself, which works round the blend)."""
+    if fix.operator != "other_name":
+        return False
+
+    def repeated(text: str) -> int:
+        try:
+            tree = parse(text)
+        except (SyntaxError, ValueError, RecursionError, MemoryError):
+            return 0
+        return sum(len(names) - len(set(names)) for call in ast.walk(tree) if isinstance(call, ast.Call)
+                   for names in [[a.id for a in call.args if isinstance(a, ast.Name)]])
+    return any(repeated(after) > repeated(before) for _, before, after in fix.changes)
+
+
 def _assigns_itself(text: str) -> bool:
     """Whether ``text`` is an assignment of names to themselves (`P2, P1 = (P2, P1)`): a statement doing nothing."""
     try:
@@ -2641,6 +2658,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
         if fix.changes[0][0] in lines or _dehomogenisation_dropped(fix) or student.skips_a_right_step(mutant) \
+                or _one_argument_twice(fix) \
                 or student.compares_with_its_own_size(mutant) or student.reduces_a_number(mutant, numbers):
             continue
         confirmed = (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
