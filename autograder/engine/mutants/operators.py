@@ -1986,8 +1986,11 @@ def _statement_moves(fn):
                     later = statements[k + 1:k + 1 + _MOVE_REACH]
                     reader = next((s for s in later if isinstance(s, _SIMPLE) and _read(s) & updated), None)
                     # (never past a `return`: after it the statement is dead, a removal, and is told as one)
+                    # (nor, in the def's own body, past the last statement reading it: there too it is dead)
                     if reader is not None and not isinstance(reader, _LEAVES) \
-                            and not any(_assigned(s) & updated for s in later[:later.index(reader)]):
+                            and not any(_assigned(s) & updated for s in later[:later.index(reader)]) \
+                            and (not isinstance(block, (ast.FunctionDef, ast.AsyncFunctionDef))
+                                 or any(_read(s) & updated for s in statements[statements.index(reader) + 1:])):
                         yield "move", reader, statement, "after"
                     earlier = statements[max(0, k - _MOVE_REACH):k]
                     reader = next((s for s in reversed(earlier) if isinstance(s, _SIMPLE) and _read(s) & updated), None)
@@ -2103,14 +2106,17 @@ def _sequential_updates(fn):
             statements = getattr(block, field, None)
             if not isinstance(statements, list):
                 continue
-            for first, second in zip(statements, statements[1:]):
+            for k, (first, second) in enumerate(zip(statements, statements[1:])):
                 if not all(isinstance(s, ast.Assign) and len(s.targets) == 1 and isinstance(s.targets[0], ast.Name)
                            for s in (first, second)):
                     continue
                 a, b = first.targets[0].id, second.targets[0].id
                 reads = lambda value, name: any(isinstance(n, ast.Name) and n.id == name  # noqa: E731
                                                 and isinstance(n.ctx, ast.Load) for n in ast.walk(value))
-                if a != b and reads(first.value, a) and reads(second.value, a):
+                # (the updated name read again after the pair, or in a loop's next turn: else the update is dead
+                # once the pair is made at once -- a removal of it, told as one)
+                again = isinstance(block, (ast.For, ast.While)) or any(reads(s, a) for s in statements[k + 2:])
+                if a != b and reads(first.value, a) and reads(second.value, a) and again:
                     yield first, second
 
 

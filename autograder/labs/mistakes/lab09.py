@@ -3,7 +3,7 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
-from . import columns_by_first_axis, one_point_by_length
+from . import columns_by_first_axis, one_point_by_length, reference_def_with
 
 DROPS_BEHIND = """
     def _divide(homogeneous, single):       # keeps only the points in front
@@ -27,6 +27,13 @@ _APERTURE = """
 """
 
 MISTAKES = {
+    # the blind set 1204e's 09/02: R "re-orthonormalised" by QR first, which flips the signs of some of its columns
+    "camera_matrix re-orthonormalising R by QR": ("lab09.ex3", reference_def_with(
+        "lab09_camera", "camera_matrix",
+        "Rt = np.column_stack([np.asarray(R, dtype=np.float64), np.asarray(t, dtype=np.float64).reshape(3)])",
+        "R = np.linalg.qr(np.asarray(R, dtype=np.float64))[0]\n"
+        "Rt = np.column_stack([np.asarray(R, dtype=np.float64), np.asarray(t, dtype=np.float64).reshape(3)])"),
+        ["removing `R = np.linalg.qr(np.asarray(R, dtype=np.float64))[0]`"]),
     # the blind set 1204e's 09/01: a point counted in front of the camera only beyond the focal length
     "pinhole_project keeping only points beyond Z = f": ("lab09.ex1", """
         def pinhole_project(points, f):
