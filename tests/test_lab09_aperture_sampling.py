@@ -22,6 +22,13 @@ def polar(radius_of, angle_high=2 * np.pi, seed=0):
     return np.stack([r * np.cos(a), r * np.sin(a)], axis=-1)
 
 
+def whole_radians(seed=5):
+    """Radius sqrt(u), angle drawn with rng.integers(0, 2 pi): seven directions (blind set 1204e's 09/05)."""
+    rng = np.random.default_rng(seed)
+    r, a = np.sqrt(rng.uniform(0, 1, (N, RAYS))), rng.integers(0, 7, (N, RAYS))
+    return np.stack([r * np.cos(a), r * np.sin(a)], axis=-1)
+
+
 def rejection(seed=1):
     rng = np.random.default_rng(seed)
     points = rng.uniform(-1, 1, (N * RAYS * 2, 2))
@@ -38,6 +45,7 @@ WRONG = {
     "normal": (np.random.default_rng(3).normal(0, 0.5, (N, RAYS, 2)), "normal distribution"),
     "rim": (polar(lambda u: np.ones_like(u)), "rim of the blur disc"),
     "half a turn": (polar(np.sqrt, angle_high=np.pi), "only half of the blur disc"),
+    "angles of whole radians": (whole_radians(), "along a few directions only"),
     "one random number": (np.repeat(np.random.default_rng(4).uniform(-0.7, 0.7, (N, RAYS, 1)), 2, axis=2),
                           "on one line"),
 }

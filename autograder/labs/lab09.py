@@ -1030,6 +1030,14 @@ def aperture_sampling(offsets) -> str:
         side = np.mean(u[:, axis] > 0)
         if (side < 0.005 or side > 0.995) and r.max() <= 1.02 and abs(abs(u[:, axis].mean()) - 4 / (3 * np.pi)) < 0.03:
             return f"the rays fill only half of the blur disc (one side in {name}): the angle covers half a turn"
+    angles = np.arctan2(u[:, 1], u[:, 0])[r > 1e-9]
+    directions = np.unique(np.round(np.mod(angles, 2 * np.pi), 6))
+    if len(angles) >= 1000 and len(directions) <= 72:
+        # (uniform angles give every ray its own direction: a few dozen at most is a drawing of a few values)
+        whole = np.all(np.abs(directions - np.round(directions)) < 1e-6)
+        return (f"the rays leave the ideal projection along a few directions only ({len(directions)}): the aperture "
+                "point's angle takes a few values" + (" (whole numbers of radians: rng.integers draws integers)" if whole else "")
+                + ", where it is uniform over a whole turn (rng.uniform(0, 2 pi))")
     uniform_square = _ks_distance(u, lambda x: np.clip((x + 1) / 2, 0, 1))
     if uniform_square < 0.02 and 0.15 < np.mean(r > 1.02) < 0.28:
         return (f"the aperture points fill the square [-aperture, aperture]^2, not the disc of radius aperture: "
