@@ -528,7 +528,16 @@ def warp_to_reference_check(t):
                "has the reference's size for every H, the identity too", mistake="the identity H keeps the moving "
                "image's size")
     identity = judge_homography_warp(t, what, got, moving, np.eye(3), dsize=(w, h), show=False)
-    return verdict if identity.fraction >= 1 else identity
+    if identity.fraction < 1:
+        return identity
+    # A moving image larger than the reference: whatever of it H sends into the frame is warped, wherever it lies
+    # in the moving image (blind set 1204e's 08/03 cut the moving image to the reference's size first).
+    small = np.ascontiguousarray(reference[:100, :140])
+    shift = np.array([[1.0, 0.0, -50.0], [0.0, 1.0, -30.0], [0.0, 0.0, 1.0]])
+    what = "warp_to_reference(reference, moving, H) with a moving image larger than the reference (H a shift by (-50, -30))"
+    larger = judge_homography_warp(t, what, t.call("warp_to_reference", small, reference, shift), reference, shift,
+                                   dsize=(140, 100), show=False)
+    return verdict if larger.fraction >= 1 else larger
 
 
 conventions.keeps_grey(ex2, "warp_to_reference", warp_to_reference_inputs, images=(0, 1),

@@ -86,6 +86,11 @@ MISTAKES = {
     # the blind set 1204c's 07/03: a cache keyed by less than the answer depends on (the size, not the angle)
     # the blind set 1204d's 07/03: rotated on a square canvas padded at the bottom right, about the square's
     # centre: one name for both halves of the pair (x, y)
+    # the blind set 1204e's 07/05: the shear factor clipped to [-1, 1] (a slope past 45 degrees is a shear too)
+    "shear clipping its factor to [-1, 1]": ("lab07.ex4", """
+        def shear(image, s=0.5):
+            return _warp(image, shear_matrix(np.clip(s, -1.0, 1.0)))
+        """, ["`np.clip(s, -1.0, 1.0)` to `s`"]),
     "rotate about the centre of a padded square": ("lab07.ex2", """
         def rotate(image, angle_deg=45):
             height, width = image.shape[:2]

@@ -520,6 +520,13 @@ MISTAKES = {
     # the blind set 1204d's 08/05: the inliers taken as np.where's tuple, counted by len (always 1)
     # the blind set 1204d's 08/03: the warp brightened or darkened to the reference's mean (a gain step the
     # sheet does not ask for): taken out whole, not steered round (its mask made empty, its gain floored to 1)
+    # the blind set 1204e's 08/03: the moving image cut (or padded) to the reference's size before it is warped
+    "warp_to_reference cutting the moving image to the reference's size first": ("lab08.ex2", reference_def_with(
+        "lab08_homographies", "warp_to_reference", "return apply_homography(moving, H, (width, height))",
+        "canvas = np.zeros((height, width) + moving.shape[2:], dtype=moving.dtype)\n"
+        "rows, cols = min(height, moving.shape[0]), min(width, moving.shape[1])\n"
+        "canvas[:rows, :cols] = moving[:rows, :cols]\n"
+        "return apply_homography(canvas, H, (width, height))"), ["`apply_homography(moving, H, (width, height))`"]),
     "warp_to_reference matching the reference's brightness": ("lab08.ex2", reference_def_with(
         "lab08_homographies", "warp_to_reference", "return apply_homography(moving, H, (width, height))",
         "warped = apply_homography(moving, H, (width, height))\n"
