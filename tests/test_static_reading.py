@@ -262,6 +262,37 @@ FINDINGS = {
             chosen = np.where(errors < t, errors, 0)
             return len(inliers), len(rows), len(chosen), len(np.argwhere(errors < t))
         """),
+    "one row repeated: the list's rows are the same list": ("""
+        def f(sx, sy):
+            M = [[0.0] * 3] * 3
+            M[0][0], M[1][1], M[2][2] = sx, sy, 1.0
+            return np.array(M)
+        """, """
+        def f(sx, sy):
+            M = [[0.0] * 3 for _ in range(3)]
+            M[0][0], M[1][1], M[2][2] = sx, sy, 1.0
+            rows = [[1, 2]] * 3
+            return np.array(M), rows
+        """),
+    "** -1 taken for a matrix's inverse": ("""
+        def f(T1, T2, M):
+            return T2 ** -1 @ M @ T1
+        """, """
+        def f(T1, T2, M, w):
+            return np.linalg.inv(T2) @ M @ T1, w ** -1
+        """),
+    "an iterator read twice: the second reading finds it empty": ("""
+        def f(pts1, pts2):
+            pairs = zip(pts1, pts2)
+            colours = [c for c in pairs]
+            return [(p, c) for p, c in zip(pairs, colours)]
+        """, """
+        def f(pts1, pts2):
+            pairs = list(zip(pts1, pts2))
+            colours = [c for c in pairs]
+            once = zip(pts1, pts2)
+            return [(p, c) for p, c in zip(pairs, colours)], [a for a in once]
+        """),
     "the distortion coefficients are read in the wrong order": ("""
         def f(points, dist):
             k1, k2, k3, p1, p2 = dist

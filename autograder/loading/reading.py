@@ -261,6 +261,9 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _grid_unpacked_as_x_y(name, function)
     found += _result_rounded(name, function)
     found += _where_tuple_counted(name, function)
+    found += _rows_repeated(name, function)
+    found += _reciprocal_as_inverse(name, function)
+    found += _iterator_read_twice(name, function)
     found += _state_kept_between_calls(name, function, lists)
     return found
 
@@ -2267,6 +2270,76 @@ def _where_tuple_counted(name, function) -> list[Finding]:
                             "returns a tuple of index arrays, one per axis, so its length is the number of axes "
                             "(1 for a 1-D condition), not how many entries pass; take the indices with "
                             "`np.where(...)[0]` or count with `np.count_nonzero(...)`", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ Python's own pitfalls
+_ITERATORS = frozenset({"zip", "map", "filter", "enumerate", "reversed", "iter"})   # (read once, then empty)
+
+
+def _rows_repeated(name, function) -> list[Finding]:
+    """``M = [[0.0] * 3] * 3`` then ``M[0][0] = sx``: the outer ``*`` repeats one row object, so writing into one
+    row writes into all (every row ends the same)."""
+    for node in _nodes(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.Mult) \
+                and any(isinstance(side, ast.List) and len(side.elts) == 1 and isinstance(side.elts[0], (ast.List, ast.BinOp))
+                        and (isinstance(side.elts[0], ast.List) or isinstance(side.elts[0].op, ast.Mult)
+                             and isinstance(side.elts[0].left, ast.List))
+                        for side in (node.value.left, node.value.right)):
+            made = node.targets[0].id
+            written = next((w for w in _nodes(function) if isinstance(w, (ast.Assign, ast.AugAssign)) and any(
+                isinstance(t, ast.Subscript) and isinstance(t.value, ast.Subscript) and isinstance(t.value.value, ast.Name)
+                and t.value.value.id == made for target in (w.targets if isinstance(w, ast.Assign) else [w.target])
+                for t in ast.walk(target))), None)
+            if written is not None:
+                line = _line(node)
+                return [Finding(name, line, "one row repeated: the list's rows are the same list",
+                                f"{name} (line {line}) makes {made} as `{ast.unparse(node.value)}`: the outer `*` repeats "
+                                f"one row object, so writing into one row (line {_line(written)}) writes into every row; "
+                                "make each row anew (`[[0.0] * 3 for _ in range(3)]`, or np.zeros((3, 3)))", certain=True)]
+    return []
+
+
+def _reciprocal_as_inverse(name, function) -> list[Finding]:
+    """``T2 ** -1`` where a matrix's inverse belongs (MATLAB's ``T2^-1``): NumPy's ``**`` works entry by entry, so it
+    gives each entry's reciprocal (inf for its zeros), not the inverse matrix."""
+    for node in _nodes(function):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.UnaryOp) \
+                and isinstance(node.right.op, ast.USub) and isinstance(node.right.operand, ast.Constant) \
+                and node.right.operand.value == 1 and isinstance(node.left, ast.Name) \
+                and any(isinstance(p, ast.BinOp) and isinstance(p.op, ast.MatMult) and node in (p.left, p.right)
+                        for p in _nodes(function)):
+            line = _line(node)
+            return [Finding(name, line, "** -1 taken for a matrix's inverse",
+                            f"{name} (line {line}) writes `{ast.unparse(node)}` in a matrix product: NumPy's ** works "
+                            "entry by entry, so it is each entry's reciprocal (inf where an entry is 0), not the inverse "
+                            f"matrix; use np.linalg.inv({node.left.id})", certain=True)]
+    return []
+
+
+def _iterator_read_twice(name, function) -> list[Finding]:
+    """``pairs = zip(a, b)`` read by one loop (or comprehension) and then by another: an iterator is used up by the
+    first, and the second sees nothing (no line drawn)."""
+    made = {node.targets[0].id: node for node in _nodes(function)
+            if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
+            and isinstance(node.value, ast.Call) and isinstance(node.value.func, ast.Name)
+            and node.value.func.id in _ITERATORS}
+    if not made:
+        return []
+    readers: dict = {}
+    for node in _nodes(function):
+        if isinstance(node, (ast.For, ast.comprehension)):
+            for read in ast.walk(node.iter):
+                if isinstance(read, ast.Name) and read.id in made:
+                    readers.setdefault(read.id, []).append(node)
+    for iterator, loops in readers.items():
+        if len(loops) >= 2:
+            line = _line(made[iterator])
+            return [Finding(name, line, "an iterator read twice: the second reading finds it empty",
+                            f"{name} (line {line}) makes {iterator} with `{ast.unparse(made[iterator].value)}`, an "
+                            "iterator, and reads it in two loops: the first uses it up and the second finds nothing; "
+                            f"make it a list (`list({ast.unparse(made[iterator].value)})`)", certain=True)]
     return []
 
 
