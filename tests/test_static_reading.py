@@ -291,7 +291,10 @@ FINDINGS = {
             pairs = list(zip(pts1, pts2))
             colours = [c for c in pairs]
             once = zip(pts1, pts2)
-            return [(p, c) for p, c in zip(pairs, colours)], [a for a in once]
+            header = iter(pts1)
+            for row in header:
+                break
+            return [(p, c) for p, c in zip(pairs, colours)], [a for a in once], [r for r in header]
         """),
     "the distortion coefficients are read in the wrong order": ("""
         def f(points, dist):

@@ -2280,36 +2280,40 @@ _ITERATORS = frozenset({"zip", "map", "filter", "enumerate", "reversed", "iter"}
 def _rows_repeated(name, function) -> list[Finding]:
     """``M = [[0.0] * 3] * 3`` then ``M[0][0] = sx``: the outer ``*`` repeats one row object, so writing into one
     row writes into all (every row ends the same)."""
+    written: dict = {}   # name -> the first statement writing into one of its rows (`M[0][0] = ...`), read once
+    for w in _nodes(function):
+        if isinstance(w, (ast.Assign, ast.AugAssign)):
+            for target in (w.targets if isinstance(w, ast.Assign) else [w.target]):
+                for t in ast.walk(target):
+                    if isinstance(t, ast.Subscript) and isinstance(t.value, ast.Subscript) \
+                            and isinstance(t.value.value, ast.Name):
+                        written.setdefault(t.value.value.id, w)
     for node in _nodes(function):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and node.targets[0].id in written \
                 and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.Mult) \
                 and any(isinstance(side, ast.List) and len(side.elts) == 1 and isinstance(side.elts[0], (ast.List, ast.BinOp))
                         and (isinstance(side.elts[0], ast.List) or isinstance(side.elts[0].op, ast.Mult)
                              and isinstance(side.elts[0].left, ast.List))
                         for side in (node.value.left, node.value.right)):
             made = node.targets[0].id
-            written = next((w for w in _nodes(function) if isinstance(w, (ast.Assign, ast.AugAssign)) and any(
-                isinstance(t, ast.Subscript) and isinstance(t.value, ast.Subscript) and isinstance(t.value.value, ast.Name)
-                and t.value.value.id == made for target in (w.targets if isinstance(w, ast.Assign) else [w.target])
-                for t in ast.walk(target))), None)
-            if written is not None:
-                line = _line(node)
-                return [Finding(name, line, "one row repeated: the list's rows are the same list",
-                                f"{name} (line {line}) makes {made} as `{ast.unparse(node.value)}`: the outer `*` repeats "
-                                f"one row object, so writing into one row (line {_line(written)}) writes into every row; "
-                                "make each row anew (`[[0.0] * 3 for _ in range(3)]`, or np.zeros((3, 3)))", certain=True)]
+            line = _line(node)
+            return [Finding(name, line, "one row repeated: the list's rows are the same list",
+                            f"{name} (line {line}) makes {made} as `{ast.unparse(node.value)}`: the outer `*` repeats "
+                            f"one row object, so writing into one row (line {_line(written[made])}) writes into every row; "
+                            "make each row anew (`[[0.0] * 3 for _ in range(3)]`, or np.zeros((3, 3)))", certain=True)]
     return []
 
 
 def _reciprocal_as_inverse(name, function) -> list[Finding]:
     """``T2 ** -1`` where a matrix's inverse belongs (MATLAB's ``T2^-1``): NumPy's ``**`` works entry by entry, so it
     gives each entry's reciprocal (inf for its zeros), not the inverse matrix."""
+    in_products = {id(side) for p in _nodes(function) if isinstance(p, ast.BinOp) and isinstance(p.op, ast.MatMult)
+                   for side in (p.left, p.right)}   # (read once: a def's every power asks)
     for node in _nodes(function):
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.UnaryOp) \
                 and isinstance(node.right.op, ast.USub) and isinstance(node.right.operand, ast.Constant) \
-                and node.right.operand.value == 1 and isinstance(node.left, ast.Name) \
-                and any(isinstance(p, ast.BinOp) and isinstance(p.op, ast.MatMult) and node in (p.left, p.right)
-                        for p in _nodes(function)):
+                and node.right.operand.value == 1 and isinstance(node.left, ast.Name) and id(node) in in_products:
             line = _line(node)
             return [Finding(name, line, "** -1 taken for a matrix's inverse",
                             f"{name} (line {line}) writes `{ast.unparse(node)}` in a matrix product: NumPy's ** works "
@@ -2334,7 +2338,9 @@ def _iterator_read_twice(name, function) -> list[Finding]:
                 if isinstance(read, ast.Name) and read.id in made:
                     readers.setdefault(read.id, []).append(node)
     for iterator, loops in readers.items():
-        if len(loops) >= 2:
+        # (a first loop that may stop early -- `break` -- leaves the rest to the next one on purpose)
+        first = min(loops, key=lambda loop: _line(loop.iter))
+        if len(loops) >= 2 and not (isinstance(first, ast.For) and any(isinstance(n, ast.Break) for n in ast.walk(first))):
             line = _line(made[iterator])
             return [Finding(name, line, "an iterator read twice: the second reading finds it empty",
                             f"{name} (line {line}) makes {iterator} with `{ast.unparse(made[iterator].value)}`, an "

@@ -1193,14 +1193,23 @@ def _nan_fill_minimised(node, parents, words) -> bool:
     if not isinstance(root, ast.Name):
         return False
     fn = _def_of(statement, parents)
-    if _minimised(ast.Assign([ast.Name(root.id, ast.Store())], node), {id(node): (fn, "body", 0)}):
+    if root.id in _minimised_names(fn):
         return True
     returned = any(isinstance(r, ast.Return) and isinstance(r.value, ast.Name) and r.value.id == root.id for r in ast.walk(fn))
-    return returned and isinstance(fn, ast.FunctionDef) and any(
-        any(isinstance(c, ast.Name) and c.id == fn.name for c in ast.walk(other))   # (called, or chosen to be)
-        and any(isinstance(c, ast.Call) and _dotted(c.func).rsplit(".", 1)[-1] in ("argmin", "nanargmin", "amin")
-                for c in ast.walk(other))
-        for other in words.module_defs.values() if other is not fn)
+    return returned and isinstance(fn, ast.FunctionDef) and fn.name in _minimising_callees(words)
+
+
+def _minimising_callees(words) -> set:
+    """The names of the module's defs that the module's other defs name (call, or choose to call) beside an argmin:
+    read once per def's words (every NaN asks)."""
+    if not hasattr(words, "minimising_callees"):
+        named = set()
+        for other in words.module_defs.values():
+            if any(isinstance(c, ast.Call) and _dotted(c.func).rsplit(".", 1)[-1] in ("argmin", "nanargmin", "amin")
+                   for c in ast.walk(other)):
+                named |= {n.id for n in ast.walk(other) if isinstance(n, ast.Name) and n.id != other.name}
+        words.minimising_callees = named
+    return words.minimising_callees
 
 
 def _make_fill_inf(node, payload):
@@ -1218,8 +1227,12 @@ def _minimised(assign, parents) -> bool:
     (`np.argmin(costs, ...)`, `costs.argmin()`, `np.min(costs)`)."""
     if not (len(assign.targets) == 1 and isinstance(assign.targets[0], ast.Name)):
         return False
-    fn = _def_of(assign, parents)
-    if not hasattr(fn, "_minimised"):   # (read once per def: every zeros asks)
+    return assign.targets[0].id in _minimised_names(_def_of(assign, parents))
+
+
+def _minimised_names(fn) -> set:
+    """The names whose smallest entries ``fn`` takes (read once per def, kept on it: every table asks)."""
+    if not hasattr(fn, "_minimised"):
         minimised = set()
         for n in ast.walk(fn):
             if isinstance(n, ast.Call) and n.args and _dotted(n.func).rsplit(".", 1)[-1] in ("argmin", "nanargmin", "min", "amin") \
@@ -1229,7 +1242,7 @@ def _minimised(assign, parents) -> bool:
                     and isinstance(n.func.value, ast.Name):
                 minimised.add(n.func.value.id)
         fn._minimised = minimised
-    return assign.targets[0].id in fn._minimised
+    return fn._minimised
 
 
 def _make_accumulate(node, payload):
@@ -1311,11 +1324,12 @@ def _drawn_colour(node, parents, fn) -> bool:
     if not (isinstance(holder, ast.Assign) and len(holder.targets) == 1 and isinstance(holder.targets[0], ast.Name)) \
             or fn is None:
         return False
-    name = holder.targets[0].id
-    return any(isinstance(call, ast.Call) and _dotted(call.func).startswith(("cv2.", "cv."))
-               and isinstance(at := DRAWING_COLOUR_AT.get(_dotted(call.func).rsplit(".", 1)[-1]), int)
-               and len(call.args) > at and isinstance(call.args[at], ast.Name) and call.args[at].id == name
-               for call in ast.walk(fn))
+    if not hasattr(fn, "_colour_names"):   # (read once per def: every constant 1 asks)
+        fn._colour_names = {call.args[at].id for call in ast.walk(fn)
+                            if isinstance(call, ast.Call) and _dotted(call.func).startswith(("cv2.", "cv."))
+                            and isinstance(at := DRAWING_COLOUR_AT.get(_dotted(call.func).rsplit(".", 1)[-1]), int)
+                            and len(call.args) > at and isinstance(call.args[at], ast.Name)}
+    return holder.targets[0].id in fn._colour_names
 
 
 def _make_from_end(node, payload):

@@ -306,6 +306,7 @@ class _Student:
         self.fixes: dict = {}        # mutant key -> its Fix, or None when it cannot be shown
         self._ordered: dict = {}     # function -> its mutants that can be shown, smallest change first
         self._novel: dict = {}       # function -> the places of its statements the reference writes nowhere
+        self._extra: dict = {}       # (def, ordinal) -> whether taking that statement out removes a step of the student's own
         self._statements: dict = {}   # def -> line -> the first line of the statement holding it
         self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
         self._shapes: dict = {}      # id of a statement (kept alive in _walked) -> its code with names masked
@@ -441,6 +442,12 @@ class _Student:
         where, ordinal, operator, _ = mutant.edits[0]
         if operator != "drop_statement" or len(mutant.edits) != 1 or not self.reference_source:
             return False
+        key = (where, ordinal)   # (asked for every pair of every sort: read once per statement)
+        if key not in self._extra:
+            self._extra[key] = self._extra_block(where, ordinal)
+        return self._extra[key]
+
+    def _extra_block(self, where: str, ordinal: int) -> bool:
         nodes, _ = self._walk(where)
         block = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
         # (an early return or raise makes the block a special case, a path of its own: a change inside it mends it)
