@@ -5,6 +5,7 @@ functions a check calls says its neutral sentence instead. Graded cases: the thi
 mistakes of issue 35, each told to do what its code already does before the change.
 """
 
+import ast
 import textwrap
 
 import pytest
@@ -324,3 +325,15 @@ def test_samples_drawn_in_a_batch_and_a_refit_on_a_mask_made_from_them_are_read_
             return homography_dlt(src[inliers], dst[inliers]), inliers
         """))
     assert lab08.OWN_RANSAC_LOOP.found(code.reachable(["homography_ransac"]))
+
+
+@pytest.mark.parametrize("body, shifted", [
+    ("return _compose([img1, img2], [np.eye(3), H])", True),
+    ("images, homographies = [img1, img2], [np.eye(3), H]\n    return _compose(images, homographies)", True),
+    ("images, homographies = [img1, img2], [H, np.eye(3)]\n    return _compose(images, homographies)", False),
+    ("return cv2.warpPerspective(img1, H, size)", False),
+])
+def test_img1_paired_with_the_identity_is_read_as_only_shifted(body, shifted):
+    from autograder.labs.lab08 import _img1_only_shifted
+    function = ast.parse(f"def stitch(img1, img2):\n    {body}\n").body[0]
+    assert _img1_only_shifted(function) is shifted

@@ -2051,11 +2051,41 @@ def in_place(panorama, image, offset) -> tuple[float, float]:
     return float((blocks >= 0.95).mean()), float(content[~agree].mean()) if (~agree).any() else 1.0
 
 
+GAIN_SCALE = 6.0      # px: the blur over which a scale of the levels is taken as smooth
+GAIN_EXPLAINED = 0.9  # the share of the image a smooth scale of its levels must reproduce (within 6 levels)
+
+
+def levels_scaled(panorama, image, offset) -> tuple[float, float] | None:
+    """The range (10th, 90th percentile) of a smooth factor that scales ``image``'s levels where it sits
+    at ``offset`` (its geometry right, its brightness not: a blend whose weights do not add up to 1 at
+    each pixel), or None when no such factor reproduces it or the factor is about 1 everywhere.
+
+    Measured on the blind set's feathered sum divided by the largest weight: a factor smooth over 6 px
+    reproduces 96% of img1's pixels within 6 grey levels (0.08 to 0.79 across it); a warp, a shift
+    or another image blended in leaves the residual far larger there."""
+    placed = _placed(panorama, image, offset)
+    if placed is None:
+        return None
+    place, image = _grey32(placed[0]), _grey32(image)
+    factor = cv2.GaussianBlur(place * image, (0, 0), GAIN_SCALE) / np.maximum(
+        cv2.GaussianBlur(image * image, (0, 0), GAIN_SCALE), 1e-6)
+    if (np.abs(place - factor * image) < 6).mean() < GAIN_EXPLAINED:
+        return None
+    low, high = (float(v) for v in np.percentile(factor, [10, 90]))
+    return None if 0.9 <= low and high <= 1.1 else (low, high)
+
+
 def placed_as_is(panorama, image, offset, name: str) -> tuple[bool, str]:
     """(whether ``image`` is only shifted and partly covered by other content, what the panorama
-    shows of it in words), from :func:`in_place`."""
+    shows of it in words), from :func:`in_place` (and :func:`levels_scaled`)."""
     share, content = in_place(panorama, image, offset)
     if share < IN_PLACE_SHARE:
+        scaled = levels_scaled(panorama, image, offset)
+        if scaled:
+            return False, (f"{name} is in place, only shifted, but its levels are scaled, by a factor from "
+                           f"{scaled[0]:.2f} to {scaled[1]:.2f} across it where it should be 1: its geometry is "
+                           "right and its brightness is not, as when a blend's weights do not add up to 1 at "
+                           "each pixel")
         return False, f"only {share:.0%} of {name}'s area is {name} as it is, only shifted"
     if content >= 0.9:
         return True, f"{name} is in place, only shifted, over {share:.0%} of its area: other content is drawn over the rest"
@@ -2169,10 +2199,12 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
                    f"{error:.0f} grey levels; {shown}): " + from_code(
                        f"your code stitches with `{stitcher}`, {STITCHER_WARPS}"), mistake=STITCHER)
         saturated = _saturated(panorama, (img1, img2), read)
-        # (where to look is the hint's: a change of their code confirmed on these inputs takes its place)
-        t.fail(f"{what}: img1 does not appear unwarped in your panorama (the best place differs "
-               f"from img1 by {error:.0f} grey levels; {shown})" + (f": {saturated}" if saturated else "."),
-               hint="" if saturated else IMG1_SHIFTED.said(t, ['stitch']),
+        # (where to look is the hint's: a change of their code confirmed on these inputs takes its place;
+        # an img1 in place whose levels are scaled is placed rightly, and told so)
+        scaled = levels_scaled(panorama, img1, offset)
+        t.fail(f"{what}: img1 does not appear {'as it is' if scaled else 'unwarped'} in your panorama (the best "
+               f"place differs from img1 by {error:.0f} grey levels; {shown})" + (f": {saturated}" if saturated else "."),
+               hint="" if saturated or scaled else IMG1_SHIFTED.said(t, ['stitch']),
                mistake=NOT_DIVIDED if saturated and _weights_never_divided(code_of(t).reachable(["stitch"])) else "")
     store[key + "/judge"] = PanoramaJudge(scene, panorama, 0, offset)
     return store[key + "/judge"]
@@ -2210,7 +2242,7 @@ def _img1_only_shifted(function) -> bool:
         if isinstance(node, ast.Assign) and any(isinstance(t, ast.Subscript) for t in node.targets) \
                 and mentions_img1(node.value):
             return True
-        if isinstance(node, ast.Call) and _identity_beside_img1(node):
+        if _identity_beside_img1(node):
             return True
     return False
 
@@ -2262,10 +2294,16 @@ def _as_bgr(image):
     return cv2.cvtColor(image, cv2.COLOR_GRAY2BGR) if image.ndim == 2 else image
 
 
-def _identity_beside_img1(call) -> bool:
+def _identity_beside_img1(node) -> bool:
     """Whether a call is given img1 in a list and the identity at the same place of another list
-    (`_compose([img1, img2], [np.eye(3), H21])`: img1 placed by the canvas's shift alone)."""
-    lists = [a.elts for a in call.args if isinstance(a, (ast.List, ast.Tuple))]
+    (`_compose([img1, img2], [np.eye(3), H21])`: img1 placed by the canvas's shift alone), or a statement
+    makes two such lists (`images, homographies = [img1, img2], [np.eye(3), H21]`, zipped after)."""
+    if isinstance(node, ast.Call):
+        lists = [a.elts for a in node.args if isinstance(a, (ast.List, ast.Tuple))]
+    elif isinstance(node, ast.Assign) and isinstance(node.value, ast.Tuple):
+        lists = [a.elts for a in node.value.elts if isinstance(a, (ast.List, ast.Tuple))]
+    else:
+        return False
     for images in lists:
         places = [i for i, e in enumerate(images) if isinstance(e, ast.Name) and e.id == "img1"]
         for other in lists:

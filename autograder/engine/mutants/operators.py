@@ -70,6 +70,7 @@ OPERATORS = {
     "reshape_transpose": ("reshape", "transpos"),      # X.T -> X.reshape(X.shape[::-1])
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
+    "own_values": ("each", "own", "per", "whole"),     # total / weights.max() -> total / weights[..., None]
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -694,6 +695,22 @@ def _bare(node):
 
 
 _GATHERS = frozenset({"take_along_axis", "take", "choose"})   # NumPy calls that pick a result's values anew
+
+
+def _summed_up(fn) -> set[str]:
+    """The names ``fn`` adds to in place (`weights += weight`): sums built up item by item (read once per def)."""
+    if not hasattr(fn, "_summed_up"):
+        fn._summed_up = {node.target.id for node in ast.walk(fn) if isinstance(node, ast.AugAssign)
+                         and isinstance(node.op, ast.Add) and isinstance(node.target, ast.Name)}
+    return fn._summed_up
+
+
+def _make_own_values(node, payload):
+    """One value of a whole array made each item's own, given to an operand with one more axis:
+    `total / weights.max()` -> `total / weights[..., None]`."""
+    whole = node.func.value if isinstance(node.func, ast.Attribute) and not node.args else node.args[0]
+    return ast.Subscript(copy.deepcopy(whole), ast.Tuple([ast.Constant(...), ast.Constant(None)], ast.Load()),
+                         ast.Load())
 
 
 def _make_unwrap(node, payload):
@@ -1419,7 +1436,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen",
          "whole_vector": _make_whole_vector, "quadrant": _make_quadrant, "swap_both": _make_swap_both,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
-         "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+         "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -3011,8 +3028,18 @@ def _student_changes(node, parent, parents, words):
         # an input converted on its way into a call where the input itself belongs: `warp(_grey(moving), H)`
         # (the grey copy made for a comparison, passed on where the colour image is warped)
         yield "unwrap", None, ""
-    if isinstance(node.func, ast.Attribute) and node.func.attr in _WHOLE_METHODS and not node.args and not node.keywords:
+    whole_method = isinstance(node.func, ast.Attribute) and node.func.attr in _WHOLE_METHODS and not node.args \
+        and not node.keywords
+    if whole_method:
         yield "unwrap", "method", ""   # one value of the whole array where each item's own belongs (a mean depth)
+    reduced = node.func.value if whole_method else node.args[0] if len(node.args) == 1 and not node.keywords \
+        and dotted in _WHOLE_REDUCTIONS else None
+    if isinstance(reduced, ast.Name) and isinstance(parent, ast.BinOp) and parent.right is node \
+            and isinstance(parent.op, (ast.Div, ast.Mult)) \
+            and reduced.id in _summed_up(_def_of(node, parents)):
+        # (each pixel's own sum, given to an operand with one more axis: a colour image divided by the
+        # per-pixel sum of weights the code adds up, where one number for the whole canvas was taken)
+        yield "own_values", None, ""
     if short == "addWeighted" and prefix in ("cv2.", "cv.") and len(node.args) >= 3:
         yield "unwrap", None, ""      # a drawing blended with the image it was drawn on a copy of: the drawing itself
         yield "unwrap", "third", ""   # (or the image, where the blend was to leave it as it was)
