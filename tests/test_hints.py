@@ -337,3 +337,26 @@ def test_img1_paired_with_the_identity_is_read_as_only_shifted(body, shifted):
     from autograder.labs.lab08 import _img1_only_shifted
     function = ast.parse(f"def stitch(img1, img2):\n    {body}\n").body[0]
     assert _img1_only_shifted(function) is shifted
+
+
+MASKED_DEPTH = """
+    def depth_from_disparity(disparity, f, baseline):
+        d = np.array(disparity, dtype=np.float64)
+        valid = np.isfinite(d) & ({condition})
+        depth = np.zeros(d.shape)
+        depth[valid] = float(f) * float(baseline) / d[valid]
+        {returned}
+    """
+
+
+@pytest.mark.parametrize("condition, returned, says, not_said", [
+    # holes filled from the left after the masked division: the division is done, the array returned is not it
+    ("d > 0", "return np.take_along_axis(depth, np.maximum.accumulate(np.where(valid, np.arange(d.shape[-1]), 0), "
+              "axis=-1), axis=-1)", "the array returned", "check that"),
+    ("d != 0", "return depth", "check that its condition is d > 0", "out starts as zeros"),
+])
+def test_a_masked_division_is_not_told_to_divide_with_where(tmp_path, no_repairs, condition, returned, says, not_said):
+    source = MASKED_DEPTH.format(condition=condition, returned=returned)
+    result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex2"], pictures="none")
+    hints = [c.hint for c in check_results(result, "lab12.ex2") if not c.passed and "divides only where" in c.hint]
+    assert hints and all(says in h and not_said not in h and "np.divide(f * baseline" not in h for h in hints)

@@ -3203,6 +3203,43 @@ def _divisions(function) -> list:
     return [n for n in ast.walk(function) if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide"]
 
 
+def _masked_divisions(function) -> list[tuple[ast.Subscript, ast.BinOp]]:
+    """(target, division) of each division written into an array only where a mask holds, the divisor read
+    under the same mask: ``depth[valid] = f * b / d[valid]`` (np.divide's ``where=`` written by hand)."""
+    found = []
+    for n in ast.walk(function):
+        if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Subscript) \
+                and isinstance(n.targets[0].value, ast.Name):
+            mask = ast.dump(n.targets[0].slice)
+            for m in ast.walk(n.value):
+                if isinstance(m, ast.BinOp) and isinstance(m.op, ast.Div) and any(
+                        isinstance(k, ast.Subscript) and ast.dump(k.slice) == mask for k in ast.walk(m.right)):
+                    found.append((n.targets[0], m))
+    return found
+
+
+def _masked_division(function) -> bool:
+    return bool(_masked_divisions(function))
+
+
+def _masked_where_positive(function) -> bool:
+    """A masked division (:func:`_masked_divisions`) whose mask tests ``> 0``, written in the slice or in the
+    name it reads (``valid = np.isfinite(d) & (d > 0)``)."""
+    values = _assigned_values(function)
+    for target, _ in _masked_divisions(function):
+        read = [target.slice] + [v for n in ast.walk(target.slice) if isinstance(n, ast.Name)
+                                 for v in values.get(n.id, [])]
+        if any(_positive_test(n) for node in read for n in ast.walk(node)):
+            return True
+    return False
+
+
+def _masked_into_zeros(function) -> bool:
+    """A masked division written into an array made by np.zeros / np.zeros_like."""
+    values = _assigned_values(function)
+    return any(any(_zeros(v) for v in values.get(target.value.id, [])) for target, _ in _masked_divisions(function))
+
+
 def _divides_by_the_parameter(function) -> bool:
     """np.divide's divisor reads the first parameter (the disparity), directly or through names assigned from it
     (``d = np.asarray(disparity, float)``); read leniently."""
@@ -3214,12 +3251,17 @@ def _divides_by_the_parameter(function) -> bool:
     def reads(node, depth=0) -> bool:
         return depth <= 4 and any(isinstance(n, ast.Name) and (n.id == parameters[0] or any(
             reads(v, depth + 1) for v in values.get(n.id, []))) for n in ast.walk(node))
-    return any(len(n.args) >= 2 and reads(n.args[1]) for n in _divisions(function))
+    return any(len(n.args) >= 2 and reads(n.args[1]) for n in _divisions(function)) \
+        or any(reads(division.right) for _, division in _masked_divisions(function))
 
 
 def _returns_the_division(function) -> bool:
     """A return of np.divide's result or of the array given as its ``out=`` (read leniently: a return of
-    anything computed from either)."""
+    anything computed from either), or of the array a masked division fills (read strictly: the array
+    itself, or a cast or copy of it -- `np.take_along_axis(depth, ...)` returns other values of it)."""
+    filled = {target.value.id for target, _ in _masked_divisions(function)}
+    if filled and any(isinstance(n, ast.Return) and _the_array_itself(n.value, filled) for n in ast.walk(function)):
+        return True
     held = set()
     for n in _divisions(function):
         held |= {k.value.id for k in n.keywords if k.arg == "out" and isinstance(k.value, ast.Name)}
@@ -3232,13 +3274,29 @@ def _returns_the_division(function) -> bool:
         for m in ast.walk(n.value)) for n in ast.walk(function))
 
 
+def _the_array_itself(node, names) -> bool:
+    """``node`` is one of ``names``, or a cast or copy of it (`depth.astype(np.float32)`, `np.asarray(depth)`)."""
+    while isinstance(node, ast.Call):
+        if isinstance(node.func, ast.Attribute) and node.func.attr in ("astype", "copy", "reshape") \
+                and not _path(node.func).startswith(("np.", "numpy.")):
+            node = node.func.value
+        elif _path(node.func) in ("np.asarray", "np.array", "np.copy", "np.float64", "numpy.asarray") and node.args:
+            node = node.args[0]
+        else:
+            break
+    return isinstance(node, ast.Name) and node.id in names
+
+
 GUARDED_DIVISION_HINT = Hint(
     "np.divide(f * baseline, d, out=np.zeros_like(d), where=d > 0) (NaN > 0 is False)",
-    asks=keyword("np.divide", "where"),
+    asks=keyword("np.divide", "where") | Predicate("divides only where a mask holds, the divisor read under it",
+                                                    _masked_division),
     instead="your code already {found}: " + checklist(
         "", ("its condition is d > 0 (NaN > 0 is False)", Predicate("divides where d > 0",
-                                                                    _divide_keyword("where", _positive_test))),
-        ("out starts as zeros", Predicate("gives np.divide zeros as out", _divide_keyword("out", _zeros))),
+                                                                    _divide_keyword("where", _positive_test))
+             | Predicate("divides where d > 0", _masked_where_positive)),
+        ("out starts as zeros", Predicate("gives np.divide zeros as out", _divide_keyword("out", _zeros))
+         | Predicate("divides into zeros", _masked_into_zeros)),
         none_left=look_at(("the value divided by (the disparity given, d = x_l - x_r)",
                            Predicate("divides by the disparity given", _divides_by_the_parameter)),
                           ("the array returned", Predicate("returns what np.divide fills", _returns_the_division)))))
