@@ -360,3 +360,28 @@ def test_a_masked_division_is_not_told_to_divide_with_where(tmp_path, no_repairs
     result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex2"], pictures="none")
     hints = [c.hint for c in check_results(result, "lab12.ex2") if not c.passed and "divides only where" in c.hint]
     assert hints and all(says in h and not_said not in h and "np.divide(f * baseline" not in h for h in hints)
+
+
+BLENDED_POINTS = """
+    def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+        overlay = image.copy()
+        for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+            if {skip}:
+                continue
+            cv2.circle(overlay, (int(round(x)), int(round(y))), int(radius), tuple(int(c) for c in color), -1)
+        return cv2.addWeighted(overlay, {weight}, image, {rest}, 0)
+    """
+
+
+@pytest.mark.parametrize("skip, weight, says", [
+    # skipping the non-finite rows already, blending the circles: not a NaN matter
+    ("np.isnan(x) or np.isnan(y) or np.isinf(x) or np.isinf(y)", 0.6, "fails without the NaN and infinite rows too"),
+    # drawing solidly, but skipping only NaN: the infinite row raises, and the advice is the tip's
+    ("np.isnan(x) or np.isnan(y)", 1.0, "skip the rows that are not finite"),
+])
+def test_the_nan_tip_speaks_of_nan_only_where_the_finite_points_are_drawn(tmp_path, no_repairs, skip, weight, says):
+    source = BLENDED_POINTS.format(skip=skip, weight=weight, rest=round(1 - weight, 1))
+    result = grade(mutant(tmp_path, "lab09_camera", source), ["lab09.ex5"], pictures="none")
+    [tip] = [c for c in check_results(result, "lab09.ex5") if c.name == "draw_points skips NaN points"]
+    assert says in tip.message
+    assert "if np.isfinite(x)" not in tip.hint    # the code tests every row already
