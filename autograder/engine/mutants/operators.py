@@ -71,6 +71,7 @@ OPERATORS = {
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
     "own_values": ("each", "own", "per", "whole"),     # total / weights.max() -> total / weights[..., None]
+    "estimator": ("n - 1", "sample", "population", "ddof", "bias", "divid"),   # np.cov(x) -> np.cov(x, bias=True)
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1420,7 +1421,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "middle_axis", "widen", "bracket", "perspective_warp",
+_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2623,6 +2624,59 @@ def _fraction_changes(node):
         yield "fraction", f"np.count_nonzero({argument}) / np.size({argument})", ""
 
 
+_SPREADS = {"cov": "bias", "std": "ddof", "var": "ddof"}   # estimators written with n or with n - 1
+
+
+def _estimator_changes(node, parents):
+    """A spread's other normalisation (the sample's n - 1 where the population's n belongs, or back):
+    `np.cov(S, rowvar=False)` -> `np.cov(S, rowvar=False, bias=True)`, `x.std()` -> `x.std(ddof=1)`; and a sum
+    divided by a count where the other is written (`D.T @ S / n` -> `/ (n - 1)`, `n` a length)."""
+    if isinstance(node, ast.Call):
+        dotted = _dotted(node.func)
+        short = dotted.rsplit(".", 1)[-1]
+        method = isinstance(node.func, ast.Attribute) and not dotted.startswith(("np.", "numpy."))
+        if short not in _SPREADS or not (method or dotted in (f"np.{short}", f"numpy.{short}")) \
+                or (method and short == "cov"):
+            return
+        keyword = _SPREADS[short]
+        given = next((k.value for k in node.keywords if k.arg == keyword), None)
+        if given is not None and not isinstance(given, ast.Constant):
+            return
+        flipped = copy.deepcopy(node)
+        flipped.keywords = [k for k in flipped.keywords if k.arg != keyword]
+        on = bool(given.value) if given is not None else False
+        if not on:
+            flipped.keywords.append(ast.keyword(keyword, ast.Constant(True if keyword == "bias" else 1)))
+        yield "estimator", ast.unparse(flipped), ""
+        return
+    if not (isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) and _calls_a_spread(_def_of(node, parents))):
+        return   # (a count divided by where a spread is also taken: the two normalisations side by side)
+    if isinstance(node.right, ast.Name) and _is_a_count(node.right.id, _def_of(node, parents)):
+        yield "estimator", f"{_operand(node.left)} / ({node.right.id} - 1)", ""
+    elif isinstance(node.right, ast.BinOp) and isinstance(node.right.op, ast.Sub) and isinstance(node.right.left, ast.Name) \
+            and isinstance(node.right.right, ast.Constant) and node.right.right.value == 1 \
+            and _is_a_count(node.right.left.id, _def_of(node, parents)):
+        yield "estimator", f"{_operand(node.left)} / {node.right.left.id}", ""
+
+
+def _calls_a_spread(fn) -> bool:
+    """Whether ``fn`` takes a covariance, a standard deviation or a variance (read once per def)."""
+    if not hasattr(fn, "_calls_a_spread"):
+        fn._calls_a_spread = any(isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _SPREADS
+                                 for node in ast.walk(fn))
+    return fn._calls_a_spread
+
+
+def _is_a_count(name: str, fn) -> bool:
+    """Whether ``fn`` assigns ``name`` only a length (`n = len(src)`, `n = S.shape[0]`)."""
+    values = [node.value for node in ast.walk(fn) if isinstance(node, ast.Assign)
+              and any(isinstance(t, ast.Name) and t.id == name for t in node.targets)]
+    return bool(values) and all(
+        (isinstance(v, ast.Call) and _dotted(v.func) == "len")
+        or (isinstance(v, ast.Subscript) and isinstance(v.value, ast.Attribute) and v.value.attr == "shape")
+        for v in values)
+
+
 def _student_changes(node, parent, parents, words):
     """Changes made to a student's code only (:mod:`.repair`), told by showing them: a function applied
     that does not belong (``np.tan(s)`` for ``s``), one mistaken for its sibling (``np.sin`` for
@@ -2634,6 +2688,7 @@ def _student_changes(node, parent, parents, words):
         yield "reverse_back", f"{_operand(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
     yield from _fraction_changes(node)
+    yield from _estimator_changes(node, parents)
     yield from _conversion_inverted(node, parent)
     if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.warpAffine", "cv.warpAffine") and len(node.args) >= 2 \
             and isinstance(node.args[1], ast.Subscript) and isinstance(node.args[1].slice, ast.Slice) \

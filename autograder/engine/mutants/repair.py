@@ -2732,6 +2732,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # (a comparison made strict or not changes only ties: beside another fix it is one by chance --
         # `ssd <= best` beside the update moved where it belongs -- and is not told)
         kept = [pair for pair in (kept or fixes) if not _ties_only(pair[1])] or kept
+        # (two normalisations side by side -- np.cov's n - 1 beside a sum divided by n --, made to agree, are the
+        # account of the answers: another change mending alike does so by a coincidence of these inputs'
+        # sizes -- a count of three points made the 2 of their coordinates)
+        kept = [pair for pair in kept if pair[1].operator == "estimator"] or kept
         # (points made homogeneous with a 0 where the 1 belongs are directions: beside another change that
         # mends alike -- a camera's column of ones made zeros -- that one is the fix, this one compensates)
         kept = [pair for pair in kept if not _homogeneous_zeroed(pair[1], student.text)] or kept
@@ -2995,7 +2999,7 @@ FIXES = 3         # the most fixes told (one per line)
 # done to one of two like inputs or twin terms only -- tried before every other kind's first
 # (and an OpenCV 0/1 mask used as an index, known by its name: a slow pipeline's search reaches it first)
 SHOWN_BY_THE_CODE = {"mirror", "sibling_step", "twin_step", "boolean_mask", "derived_name", "measure_first", "identity",
-                     "first_term", "own_values"}
+                     "first_term", "own_values", "estimator"}
 REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "unwrap", "drop_conversion",
             "drop_mask", "drop_slice"}   # changes that take a step out
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
@@ -3921,8 +3925,9 @@ def _upstream(repair: Repair, trial) -> Repair:
     # (and a change of a line before it, whose values are the reference's, compensates for the slip further on:
     # A built as A^T by `np.column_stack` makes `A @ A.T` right, where `A.T @ A` is the fix)
     before = lambda fix: fix.where == where and max(change[0] for change in fix.changes) < line  # noqa: E731
-    kept = tuple(fix for fix in repair.fixes if not after(fix) and not before(fix)) \
-        or tuple(fix for fix in repair.fixes if not after(fix))
+    # (where every fix is before it or after it, the departure is a step of the student's own no single change
+    # mends -- centred points the reference never makes --: it says nothing of which fix is the slip)
+    kept = tuple(fix for fix in repair.fixes if not after(fix) and not before(fix))
     return replace(repair, fixes=kept) if kept and len(kept) < len(repair.fixes) else repair
 
 

@@ -306,6 +306,19 @@ MISTAKES = {
         """, ["along y"]),
     # the blind set 1203c's 07/07: the unknowns solved as (a, b, c, d, tx, ty), the vector reshaped row by row
     # the blind set 1203b's 07/07: the linear part fitted on centred triangles, the translation left unmapped by it
+    # the blind set 1204e's 07/06: a covariance divided by n - 1 (np.cov) beside a cross-covariance divided by n
+    "affine_from_points from covariances with two normalisations": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            src = np.asarray(src, dtype=np.float64)
+            dst = np.asarray(dst, dtype=np.float64)
+            count = src.shape[0]
+            centred_src, centred_dst = src - src.mean(axis=0), dst - dst.mean(axis=0)
+            spread = np.cov(centred_src.T)
+            cross = centred_dst.T @ centred_src / count
+            linear = cross @ np.linalg.inv(spread)
+            shift = dst.mean(axis=0) - linear @ src.mean(axis=0)
+            return np.column_stack([linear, shift])
+        """, ["`np.cov(centred_src.T, bias=True)`", "`centred_dst.T @ centred_src / (count - 1)`"]),
     "affine_from_points with the translation of the centroids alone": ("lab07.ex5", """
         def affine_from_points(src, dst):
             src, dst = np.asarray(src, dtype=np.float64), np.asarray(dst, dtype=np.float64)
