@@ -36,6 +36,7 @@ def numpy_error(operation) -> str:
     ((120,), (120, 160), "indexed on its last axis"),
     ((16, 20, 2), (4, 20, 2), "16 = 4 x 4"),
     ((9, 2), (3, 2), "9 = 3 x 3"),
+    ((3, 120, 160), (120, 160, 3), "channels come first"),
 ])
 def test_a_recognised_form_is_named_from_the_shape(got, expected, words):
     form = shape_form(got, expected)

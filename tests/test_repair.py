@@ -4575,3 +4575,63 @@ def test_a_name_given_where_it_makes_a_call_take_one_name_twice_is_no_fix():
                            "cv2.addWeighted(overlay, 0.6, overlay, 0.4, 0)"),), "draw_points", "other_name", ())
     apart = repair.Fix(((12, "f(pts1, pts1)", "f(pts1, pts2)"),), "graded", "other_name", ())
     assert repair._one_argument_twice(blended) and not repair._one_argument_twice(apart)
+
+
+def test_a_whole_array_reduced_where_each_pixel_s_own_sum_belongs_is_given_its_own():
+    """`total / weights.max()` where `weights` is summed up pixel by pixel (a feathered blend's weights): divided
+    by each pixel's own sum, `weights[..., None]`; a reduction of a name never summed up has no such change."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(images, ws, image):
+            total, weights = 0.0, 0.0
+            for im, w in zip(images, ws):
+                total += im * w[..., None]
+                weights += w
+            return total / weights.max(), image / image.max(), total / np.sum(weights)
+    """)
+    changes = _shown_changes(source, "own_values")
+    assert ("weights.max()", "weights[..., None]") in changes and ("np.sum(weights)", "weights[..., None]") in changes
+    assert not any(before == "image.max()" for before, _ in changes)
+
+
+def test_a_spread_s_other_normalisation_and_a_count_beside_it_are_tried():
+    """np.cov divides by n - 1: `np.cov(S.T)` -> `np.cov(S.T, bias=True)`, `x.std()` -> `x.std(ddof=1)`,
+    `np.var(x, ddof=1)` -> `np.var(x)`; a sum divided by a count beside a spread -> `/ (n - 1)`. A mean divided by
+    a count with no spread in the def is left as it is."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(S, D, x):
+            n = len(S)
+            spread = np.cov(S.T)
+            cross = D.T @ S / n
+            deviation = x.std()
+            variance = np.var(x, ddof=1)
+            return spread, cross, deviation, variance
+        def other(S):
+            n = S.shape[0]
+            return S.sum(axis=0) / n
+    """)
+    changes = _shown_changes(source, "estimator")
+    assert ("spread = np.cov(S.T)", "spread = np.cov(S.T, bias=True)") in changes
+    assert ("deviation = x.std()", "deviation = x.std(ddof=1)") in changes and ("np.var(x, ddof=1)", "np.var(x)") in changes
+    assert ("cross = D.T @ S / n", "cross = D.T @ S / (n - 1)") in changes, changes
+    student = repair._Student(source, ast.parse(source), {"other"})
+    assert not [m for m in student.mutants("other") if m.operator == "estimator"]
+
+
+def test_planes_a_loop_made_stacked_channel_first_are_stacked_on_the_last_axis():
+    """`np.array(planes)` of a list a comprehension or a loop made: `np.stack(planes, axis=-1)`; an array of a
+    parameter is left as it is."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(image, pts):
+            planes = [image[:, :, k] * 2 for k in range(3)]
+            rows = []
+            for p in pts:
+                rows.append(p)
+            return np.array(planes), np.asarray(rows), np.array(pts)
+    """)
+    changes = _shown_changes(source, "stack_last")
+    assert ("np.array(planes)", "np.stack(planes, axis=-1)") in changes
+    assert ("np.asarray(rows)", "np.stack(rows, axis=-1)") in changes
+    assert not any(before == "np.array(pts)" for before, _ in changes)

@@ -189,7 +189,14 @@ def _channels_form(got: tuple, expected: tuple) -> Form | None:
     if len(expected) == 3 and expected[2] == 3 and got == expected[:2]:
         return Form(f"it looks like the channels are not kept: a grey (H, W) image where a BGR (H, W, 3) one is "
                     f"asked ({rule}: BGR in, BGR out)", "the channels are not kept")
+    if len(expected) == 3 and got == expected[2:] + expected[:2]:   # (3, H, W) for (H, W, 3)
+        return Form(measured(f"it looks like the channels come first, {got}: the planes stacked along a new first axis, "
+                             "where an image's channels are its last axis "
+                             "(rows, columns, channels)"), CHANNELS_FIRST)
     return None
+
+
+CHANNELS_FIRST = "the channels stacked along the first axis instead of the last"
 
 
 COLOURS_LOST = "the colours are lost: a grey copy used where the colour image belongs"

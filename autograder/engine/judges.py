@@ -33,7 +33,7 @@ from fixtures.images import as_homography, coverage, warp
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
 from .claims import calls_any, checklist, from_code, measured, seen_in_code
-from .forms import (CHANNEL_COPIED, COLOURS_LOST, UNIT_RANGE_CAST, channel_copied, colours_lost, shape_form,
+from .forms import (CHANNEL_COPIED, CHANNELS_FIRST, COLOURS_LOST, UNIT_RANGE_CAST, channel_copied, colours_lost, shape_form,
                     unit_range_cast)
 from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, mentions, parameter_flows,
                     size_given_as_shape)
@@ -492,8 +492,9 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         if resized:
             t.fail(f"{what} returned shape {got.shape}, the input's size times the transform's scale; expected "
                    f"{expected_shape}: {resized}", mistake=RESIZED)
-        form = shape_form(got.shape, expected_shape) if got.ndim < len(expected_shape) else None
-        if form is not None:   # (an axis lost, not a size: what the form tells, not the size rule)
+        form = shape_form(got.shape, expected_shape)
+        if form is not None and (got.ndim < len(expected_shape) or form.mistake == CHANNELS_FIRST):
+            # (an axis lost, or the channels' axis moved first, not a size: what the form tells, not the size rule)
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: {form.sentence}", mistake=form.mistake)
         size_rule = "" if dsize else ": warps keep the input's size (content that leaves the frame is cut off)"
         t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}{size_rule}")

@@ -72,6 +72,7 @@ OPERATORS = {
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
     "own_values": ("each", "own", "per", "whole"),     # total / weights.max() -> total / weights[..., None]
     "estimator": ("n - 1", "sample", "population", "ddof", "bias", "divid"),   # np.cov(x) -> np.cov(x, bias=True)
+    "stack_last": ("axis", "last", "stack", "channel", "first"),   # np.array(planes) -> np.stack(planes, axis=-1)
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1421,7 +1422,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "middle_axis", "widen", "bracket", "perspective_warp",
+_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2624,6 +2625,31 @@ def _fraction_changes(node):
         yield "fraction", f"np.count_nonzero({argument}) / np.size({argument})", ""
 
 
+def _stacked_last(node, parents):
+    """Items a loop or a comprehension made, stacked along a new first axis where the last belongs: `np.array(planes)`
+    -> `np.stack(planes, axis=-1)` (a colour image's warped planes put back channel-first)."""
+    if not (isinstance(node, ast.Call) and _dotted(node.func) in ("np.array", "np.asarray", "np.stack", "numpy.array",
+                                                                  "numpy.asarray", "numpy.stack")
+            and len(node.args) == 1 and not node.keywords and isinstance(node.args[0], ast.Name)):
+        return
+    if node.args[0].id in _lists_made(_def_of(node, parents)):
+        yield "stack_last", f"np.stack({node.args[0].id}, axis=-1)", ""
+
+
+def _lists_made(fn) -> set[str]:
+    """The names ``fn`` makes lists of items in (a comprehension, or `[]` appended to), read once per def."""
+    if not hasattr(fn, "_lists_made"):
+        made = {t.id for node in ast.walk(fn) if isinstance(node, ast.Assign) and isinstance(node.value, ast.ListComp)
+                for t in node.targets if isinstance(t, ast.Name)}
+        started = {t.id for node in ast.walk(fn) if isinstance(node, ast.Assign) and isinstance(node.value, ast.List)
+                   and not node.value.elts for t in node.targets if isinstance(t, ast.Name)}
+        appended = {node.func.value.id for node in ast.walk(fn) if isinstance(node, ast.Call)
+                    and isinstance(node.func, ast.Attribute) and node.func.attr == "append"
+                    and isinstance(node.func.value, ast.Name)}
+        fn._lists_made = made | (started & appended)
+    return fn._lists_made
+
+
 _SPREADS = {"cov": "bias", "std": "ddof", "var": "ddof"}   # estimators written with n or with n - 1
 
 
@@ -2689,6 +2715,7 @@ def _student_changes(node, parent, parents, words):
     yield from _series_powers(node, parent)
     yield from _fraction_changes(node)
     yield from _estimator_changes(node, parents)
+    yield from _stacked_last(node, parents)
     yield from _conversion_inverted(node, parent)
     if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.warpAffine", "cv.warpAffine") and len(node.args) >= 2 \
             and isinstance(node.args[1], ast.Subscript) and isinstance(node.args[1].slice, ast.Slice) \

@@ -94,6 +94,18 @@ MISTAKES = {
             return T2_inverse @ Hn @ T1
         """, ["its translation not divided by the scale"]),
     # the blind set 1204b's 08/01: an own inverse map keeping only the pixels whose source has w > 0
+    # the blind set 1204e's 08/01: each plane warped, the planes put back with np.array (channels first)
+    "apply_homography stacking the warped planes channel-first": ("lab08.ex1", """
+        def apply_homography(image, H, dsize=None):
+            height, width = image.shape[:2]
+            size = dsize or (width, height)
+            if image.ndim == 2:
+                return cv2.warpPerspective(image, np.asarray(H, float), size)
+            warped = []
+            for k in range(image.shape[2]):
+                warped.append(cv2.warpPerspective(image[:, :, k], np.asarray(H, float), size))
+            return np.asarray(warped)
+        """, ["the channels come first"]),
     "apply_homography keeping only w > 0": ("lab08.ex1", """
         def apply_homography(image, H, dsize=None):
             width, height = dsize if dsize is not None else (image.shape[1], image.shape[0])
