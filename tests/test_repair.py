@@ -4635,3 +4635,19 @@ def test_planes_a_loop_made_stacked_channel_first_are_stacked_on_the_last_axis()
     assert ("np.array(planes)", "np.stack(planes, axis=-1)") in changes
     assert ("np.asarray(rows)", "np.stack(rows, axis=-1)") in changes
     assert not any(before == "np.array(pts)" for before, _ in changes)
+
+
+def test_an_image_s_rows_and_columns_exchanged_with_t_are_swapped_axes():
+    """`img.T` reverses every axis (a colour image's channels come first): `np.swapaxes(img, 0, 1)`; a `.T`
+    nested in one is the same slip, swapped with it; a matrix's `.T` is left as it is."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(img, R, tx):
+            flipped = img.T
+            back = shift(img.T, tx).T
+            return flipped, back, R.T
+    """)
+    changes = _shown_changes(source, "swap_axes")
+    assert ("flipped = img.T", "flipped = np.swapaxes(img, 0, 1)") in changes, changes
+    assert ("back = shift(img.T, tx).T", "back = np.swapaxes(shift(np.swapaxes(img, 0, 1), tx), 0, 1)") in changes
+    assert not any("R" in before for before, _ in changes)

@@ -73,6 +73,7 @@ OPERATORS = {
     "own_values": ("each", "own", "per", "whole"),     # total / weights.max() -> total / weights[..., None]
     "estimator": ("n - 1", "sample", "population", "ddof", "bias", "divid"),   # np.cov(x) -> np.cov(x, bias=True)
     "stack_last": ("axis", "last", "stack", "channel", "first"),   # np.array(planes) -> np.stack(planes, axis=-1)
+    "swap_axes": ("transpos", "axes", "channel", "rows", "columns"),   # img.T -> np.swapaxes(img, 0, 1)
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1422,7 +1423,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "middle_axis", "widen", "bracket", "perspective_warp",
+_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2625,6 +2626,25 @@ def _fraction_changes(node):
         yield "fraction", f"np.count_nonzero({argument}) / np.size({argument})", ""
 
 
+_IMAGE_WORDS = ("im", "img", "image", "images", "frame", "canvas", "panorama", "photo", "picture", "view", "left",
+                "right", "plane", "planes", "warped", "shifted", "out", "result", "src", "dst")
+
+
+def _image_name(name: str) -> bool:
+    """Whether a name reads as an image's (`img`, `left_image`, `shifted`), by its words."""
+    return any(part in _IMAGE_WORDS for part in name.lower().split("_"))
+
+
+class _SwapAxes(ast.NodeTransformer):
+    """Every `.T` of an image's name made `np.swapaxes(x, 0, 1)`."""
+
+    def visit_Attribute(self, node):
+        self.generic_visit(node)
+        if node.attr == "T" and isinstance(node.value, ast.Name) and _image_name(node.value.id):
+            return ast.Call(_name("np.swapaxes"), [node.value, ast.Constant(0), ast.Constant(1)], [])
+        return node
+
+
 def _stacked_last(node, parents):
     """Items a loop or a comprehension made, stacked along a new first axis where the last belongs: `np.array(planes)`
     -> `np.stack(planes, axis=-1)` (a colour image's warped planes put back channel-first)."""
@@ -2716,6 +2736,13 @@ def _student_changes(node, parent, parents, words):
     yield from _fraction_changes(node)
     yield from _estimator_changes(node, parents)
     yield from _stacked_last(node, parents)
+    if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load) \
+            and isinstance(node.value, (ast.Name, ast.Call)) \
+            and any(isinstance(n, ast.Name) and _image_name(n.id) for n in ast.walk(node.value)):
+        # (an image's rows and columns exchanged with .T, which reverses every axis: a colour image's channels
+        # come first)
+        # (a .T inside it is the same slip: `_down(image.T, tx).T` -> both swapped, the one change nested in the other)
+        yield "swap_axes", f"np.swapaxes({ast.unparse(_SwapAxes().visit(copy.deepcopy(node.value)))}, 0, 1)", ""
     yield from _conversion_inverted(node, parent)
     if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.warpAffine", "cv.warpAffine") and len(node.args) >= 2 \
             and isinstance(node.args[1], ast.Subscript) and isinstance(node.args[1].slice, ast.Slice) \

@@ -56,6 +56,20 @@ MISTAKES = {
             out = cv2.warpAffine(img, M, (w, h), flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
             return out if image.ndim == 3 else out[..., 0]
         """, ["indexed on its last axis", "keeps a single column"]),
+    # the blind set 1204e's 07/04: columns shifted as the rows of the image's .T (a colour image's channels go first)
+    "translate shifting columns as the rows of image.T": ("lab07.ex1", """
+        def _down(image, d):
+            out = np.zeros_like(image)
+            if 0 <= d < image.shape[0]:
+                out[d:] = image[:image.shape[0] - d]
+            return out
+        def translate(image, tx=100, ty=50):
+            if float(tx).is_integer() and float(ty).is_integer() and tx >= 0 and ty >= 0:
+                image = _down(image, int(ty))
+                return _down(image.T, int(tx)).T
+            M = np.float32([[1, 0, tx], [0, 1, ty]])
+            return cv2.warpAffine(image, M, (image.shape[1], image.shape[0]))
+        """, ["np.swapaxes(image, 0, 1)"]),
     "translate by slicing, no case for a shift past the image": ("lab07.ex1", """
         def translate(image, tx=100, ty=50):
             h, w = image.shape[:2]
