@@ -4651,3 +4651,18 @@ def test_an_image_s_rows_and_columns_exchanged_with_t_are_swapped_axes():
     assert ("flipped = img.T", "flipped = np.swapaxes(img, 0, 1)") in changes, changes
     assert ("back = shift(img.T, tx).T", "back = np.swapaxes(shift(np.swapaxes(img, 0, 1), tx), 0, 1)") in changes
     assert not any("R" in before for before, _ in changes)
+
+
+def test_points_scaled_whole_are_scaled_in_x_and_y_only():
+    """`X * f` before a projection with unit focal length scales the depth too (it cancels): `X * np.array([f, f,
+    1.0])`; a product of two names that read as points, or of a scalar by a scalar, is left as it is."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(X, f, s, t):
+            scaled = X * f
+            both = X * points
+            plain = s * t
+            return scaled, both, plain
+    """)
+    changes = _shown_changes(source, "scale_xy")
+    assert changes == [("scaled = X * f", "scaled = X * np.array([f, f, 1.0])")], changes

@@ -74,6 +74,7 @@ OPERATORS = {
     "estimator": ("n - 1", "sample", "population", "ddof", "bias", "divid"),   # np.cov(x) -> np.cov(x, bias=True)
     "stack_last": ("axis", "last", "stack", "channel", "first"),   # np.array(planes) -> np.stack(planes, axis=-1)
     "swap_axes": ("transpos", "axes", "channel", "rows", "columns"),   # img.T -> np.swapaxes(img, 0, 1)
+    "scale_xy": ("x and y", "depth", "z", "scale", "every coordinate"),   # X * f -> X * np.array([f, f, 1.0])
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1423,7 +1424,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "middle_axis", "widen", "bracket", "perspective_warp",
+_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2645,6 +2646,14 @@ class _SwapAxes(ast.NodeTransformer):
         return node
 
 
+_POINT_WORDS = ("x", "xyz", "pts", "points", "world", "pw", "cam", "camera", "p", "q", "scene")
+
+
+def _point_name(name: str) -> bool:
+    """Whether a name reads as 3D points' (`X`, `points`, `pts_cam`), by its words."""
+    return any(part in _POINT_WORDS for part in name.lower().split("_"))
+
+
 def _stacked_last(node, parents):
     """Items a loop or a comprehension made, stacked along a new first axis where the last belongs: `np.array(planes)`
     -> `np.stack(planes, axis=-1)` (a colour image's warped planes put back channel-first)."""
@@ -2736,6 +2745,11 @@ def _student_changes(node, parent, parents, words):
     yield from _fraction_changes(node)
     yield from _estimator_changes(node, parents)
     yield from _stacked_last(node, parents)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and isinstance(node.left, ast.Name) \
+            and isinstance(node.right, ast.Name) and _point_name(node.left.id) and not _point_name(node.right.id):
+        # (3D points scaled whole where only x and y are: a magnification by f that scales the depth too, and
+        # cancels in the division by it)
+        yield "scale_xy", f"{node.left.id} * np.array([{node.right.id}, {node.right.id}, 1.0])", ""
     if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load) \
             and isinstance(node.value, (ast.Name, ast.Call)) \
             and any(isinstance(n, ast.Name) and _image_name(n.id) for n in ast.walk(node.value)):
