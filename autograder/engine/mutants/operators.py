@@ -75,6 +75,7 @@ OPERATORS = {
     "stack_last": ("axis", "last", "stack", "channel", "first"),   # np.array(planes) -> np.stack(planes, axis=-1)
     "swap_axes": ("transpos", "axes", "channel", "rows", "columns"),   # img.T -> np.swapaxes(img, 0, 1)
     "scale_xy": ("x and y", "depth", "z", "scale", "every coordinate"),   # X * f -> X * np.array([f, f, 1.0])
+    "neutral": ("scale", "normalis", "own step", "1", "0"),   # s = r.max() -> s = 1.0 (a scale applied and undone)
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1424,7 +1425,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "middle_axis", "widen", "bracket", "perspective_warp",
+_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2654,6 +2655,41 @@ def _point_name(name: str) -> bool:
     return any(part in _POINT_WORDS for part in name.lower().split("_"))
 
 
+def _neutral_value(node, parent, parents):
+    """A value of the student's own that only scales (every read of it multiplies or divides) or only shifts
+    (every read adds or subtracts), made neutral: `scale = r.max()` -> `scale = 1.0` where the points are divided
+    by it, treated, and multiplied back (a model that holds at the coordinates as they are, not rescaled)."""
+    if not (isinstance(parent, ast.Assign) and parent.value is node and len(parent.targets) == 1
+            and isinstance(parent.targets[0], ast.Name) and not isinstance(node, ast.Constant)):
+        return
+    name, fn = parent.targets[0].id, _def_of(node, parents)
+    uses = _uses_of(fn).get(name, [])
+    if len(uses) < 2 or sum(isinstance(target, ast.Name) and target.id == name
+                            for n in ast.walk(fn) if isinstance(n, ast.Assign) for target in n.targets) != 1:
+        return   # (a value read once, or assigned again, is a step of another kind)
+    if all(isinstance(op, (ast.Mult, ast.Div)) for op in uses):
+        yield "neutral", "1.0", ""
+    elif all(isinstance(op, (ast.Add, ast.Sub)) for op in uses):
+        yield "neutral", "0.0", ""
+
+
+def _uses_of(fn) -> dict:
+    """name -> the operator of each BinOp it is read as an operand of (None for any other read), once per def."""
+    if not hasattr(fn, "_uses_of"):
+        operators = {}
+        for n in ast.walk(fn):
+            if isinstance(n, ast.BinOp):
+                for side in (n.left, n.right):
+                    if isinstance(side, ast.Name):
+                        operators[id(side)] = n.op
+        uses: dict = {}
+        for n in ast.walk(fn):
+            if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load):
+                uses.setdefault(n.id, []).append(operators.get(id(n)))
+        fn._uses_of = uses
+    return fn._uses_of
+
+
 def _stacked_last(node, parents):
     """Items a loop or a comprehension made, stacked along a new first axis where the last belongs: `np.array(planes)`
     -> `np.stack(planes, axis=-1)` (a colour image's warped planes put back channel-first)."""
@@ -2745,6 +2781,7 @@ def _student_changes(node, parent, parents, words):
     yield from _fraction_changes(node)
     yield from _estimator_changes(node, parents)
     yield from _stacked_last(node, parents)
+    yield from _neutral_value(node, parent, parents)
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and isinstance(node.left, ast.Name) \
             and isinstance(node.right, ast.Name) and _point_name(node.left.id) and not _point_name(node.right.id):
         # (3D points scaled whole where only x and y are: a magnification by f that scales the depth too, and
