@@ -350,9 +350,27 @@ def where_points_differ(got, expected, tolerance: float, names=("x", "y")) -> st
     columns = [name for name, bad in zip(names, wrong.any(axis=0)) if bad]
     which = "every point" if rows.size == len(got) else \
         f"{rows.size} of {len(got)} points (the first is row {rows[0]})"
+    order = _rows_permuted(got, expected, tolerance)
+    if order is not None:
+        first = int(rows[0])
+        return measured(f"for {which}: your rows are the expected ones in another order (your row {first} is the "
+                        f"expected row {order[first]}), where row i belongs to input i")
     if len(columns) < len(names):
         return f"for {which}, in {' and '.join(columns)} only"
     return f"for {which}"
+
+
+def _rows_permuted(got, expected, tolerance: float, largest: int = 2000):
+    """For each of ``got``'s rows the row of ``expected`` it equals (within ``tolerance``), where the rows are
+    those of ``expected`` in another order, each once; None otherwise (or for sets too large to compare)."""
+    if got.shape != expected.shape or got.ndim != 2 or not 2 <= len(got) <= largest \
+            or not np.isfinite(got).all() or not np.isfinite(expected).all():
+        return None
+    apart = np.abs(got[:, None, :] - expected[None, :, :]).max(axis=2)
+    order = apart.argmin(axis=1)
+    if not (apart[np.arange(len(got)), order] <= float(np.max(tolerance))).all() or len(np.unique(order)) != len(order):
+        return None
+    return order
 
 
 _ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth")
