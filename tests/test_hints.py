@@ -385,3 +385,19 @@ def test_the_nan_tip_speaks_of_nan_only_where_the_finite_points_are_drawn(tmp_pa
     [tip] = [c for c in check_results(result, "lab09.ex5") if c.name == "draw_points skips NaN points"]
     assert says in tip.message
     assert "if np.isfinite(x)" not in tip.hint    # the code tests every row already
+
+
+@pytest.mark.parametrize("loop, greedy", [
+    # each column chosen given the one before it, from the left: a greedy pass
+    ("for x in range(1, width):\n        jump = ramp[np.abs(d - disparity[x - 1][:, None])]\n"
+     "        disparity[x] = np.argmin(energy[x] + jump, axis=1)", True),
+    # the lab sheet's walk back from the last column
+    ("for x in range(width - 2, -1, -1):\n        jump = ramp[np.abs(d - disparity[x + 1][:, None])]\n"
+     "        disparity[x] = np.argmin(energy[x] + jump, axis=1)", False),
+    # each column's own argmin (no backtracking at all: another reading names it)
+    ("for x in range(1, width):\n        disparity[x] = np.argmin(energy[x], axis=1)", False),
+])
+def test_a_dp_choosing_each_column_from_the_left_is_read_as_a_greedy_pass(loop, greedy):
+    from autograder.labs.lab12 import _chosen_from_the_left
+    function = ast.parse(f"def dp_stereo(left, right):\n    {loop}\n    return disparity\n").body[0]
+    assert (_chosen_from_the_left([function]) is not None) is greedy

@@ -260,7 +260,7 @@ def matching_hint(t: Trial, what: str) -> str:
     is left to check; for the DP, where the difference can come from (its own steps, not block matching's)."""
     function = judged_function(what)
     if function == DP_FUNCTION:
-        return DP_STEPS
+        return dp_hint(t)
     if OPENCV_MATCHER_HINT.contradicts(code_of(t), [function]):
         return OPENCV_MATCHER_HINT.said(t, [function])
     return LOWEST_COST_HINT.said(t, [function])
@@ -2390,6 +2390,50 @@ def _walks_back(function) -> bool:
 WALKS_BACK = Predicate("loops backwards over the columns", _walks_back)
 
 
+def _chosen_from_the_left(functions) -> int | None:
+    """The line where a loop running forward (`for x in range(1, width)`) picks each column's disparity by an
+    argmin that reads the disparity it picked at the column before (`d[x] = np.argmin(E[x] + jump(d[x - 1]))`):
+    a greedy pass from column 0, where the backtracking starts at the last column and walks left. None when no
+    loop does (or the code also loops backwards: a walk back is there)."""
+    for function in functions:
+        if _walks_back(function):
+            return None
+        for loop in ast.walk(function):
+            if not (isinstance(loop, ast.For) and isinstance(loop.target, ast.Name) and isinstance(loop.iter, ast.Call)
+                    and isinstance(loop.iter.func, ast.Name) and loop.iter.func.id == "range"):
+                continue
+            x = loop.target.id
+            for node in ast.walk(loop):
+                if not (isinstance(node, ast.Assign) and len(node.targets) == 1
+                        and isinstance(node.targets[0], ast.Subscript) and isinstance(node.targets[0].value, ast.Name)):
+                    continue
+                chosen, at = node.targets[0].value.id, ast.unparse(node.targets[0].slice)
+                if at != x or not any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "argmin"
+                                      for n in ast.walk(node.value)):
+                    continue
+                # (directly, or through a name the loop makes from it: `jump = ramp[|d - d_prev[x - 1]|]`)
+                made = {t.id: m.value for m in ast.walk(loop) if isinstance(m, ast.Assign)
+                        for t in m.targets if isinstance(t, ast.Name)}
+                read = [node.value] + [made[n.id] for n in ast.walk(node.value)
+                                       if isinstance(n, ast.Name) and n.id in made]
+                if any(isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and n.value.id == chosen
+                       and ast.unparse(n.slice).replace(" ", "") == f"{x}-1" for value in read for n in ast.walk(value)):
+                    return node.lineno
+    return None
+
+
+def dp_hint(t: Trial) -> str:
+    """Where a DP's difference can come from: its steps, or, for code choosing each column from the one before it
+    left to right, that the backtracking runs the other way."""
+    line = _chosen_from_the_left(code_of(t).reachable([DP_FUNCTION]))
+    if line is None:
+        return DP_STEPS
+    return from_code(f"your code picks each column's disparity given the one picked at the column before it, from "
+                     f"the left (line {line}): a greedy pass, which can never revise an early choice. The lab sheet's "
+                     "backtracking starts at the last column, at the lowest accumulated energy there, and walks left, "
+                     "each column's disparity the one that led to its right neighbour's")
+
+
 def forward_pass_maps(scene, block_size: int = 5) -> dict[str, np.ndarray]:
     """The maps a DP gives at a huge smoothness when it reads each column's lowest accumulated
     energy instead of backtracking, for the two usual data costs (block SAD, block SSD; the cost
@@ -2514,7 +2558,7 @@ def dp_weak_texture(t):
             return partial(0.5, f"{named.message} {better}", mistake=named.mistake)
         # No cause is known here: the hint says where the difference can come from, not what to change.
         naming_crop(t, "dp_stereo", scene, columns=NAMING_COLUMNS)()
-        return partial(0.5, f"{what}: {better}", hint=DP_STEPS)
+        return partial(0.5, f"{what}: {better}", hint=dp_hint(t))
     name_no_backtracking(t, what)
     naming_crop(t, "dp_stereo", scene, columns=NAMING_COLUMNS)()
     t.fail(f"{what}: {summary}: no better than block matching.")
