@@ -313,9 +313,11 @@ def triangulation_probe(t: Trial) -> Probe:
 
 @ex1.check("triangulate a worked example (5 exact correspondences)", points=3)
 def triangulate_example(t):
-    views = truth.two_views(seed=1, n=5)
+    # (two of the points on an image's edge, at x = 0 and y = 0: pixels like any other)
+    views = truth.on_the_edges(truth.two_views(seed=1, n=5))
     got = t.call("triangulate", views.P1, views.P2, views.pts1, views.pts2)
-    return judge_triangulation(t, "triangulate(P1, P2, pts1, pts2)", got, views, show=True)
+    return judge_triangulation(t, "triangulate(P1, P2, pts1, pts2), pts1[0] at x = 0 and pts2[1] at y = 0", got,
+                               views, show=True)
 
 
 @ex1.check("triangulate 300 points at once, near (depth 1-3) and far (depth 100-1000)", points=3)

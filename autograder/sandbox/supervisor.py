@@ -29,6 +29,7 @@ import fcntl
 import json
 import logging
 import os
+import re
 import secrets
 import select
 import shutil
@@ -49,6 +50,37 @@ from .files import copy_regular_files
 
 LENGTH = struct.Struct(">Q")
 _WORKER_FILES = ("worker.py", "transport.py", "beginner.py")
+STACK_NAME = "stack.txt"   # worker.STACK_FILE, beside the output file
+STACK_MARGIN = 0.25        # s before the deadline the worker writes where a call still running is
+STACK_BYTES = 16_384       # read of it at most
+_FRAME = re.compile(r'^\s*File "([^"\n]{1,400})", line (\d{1,7}) in ([A-Za-z_][A-Za-z0-9_<>]{0,80})\s*$')
+
+
+def where_stopped(text: str, module_files: set[str]) -> str:
+    """Where a call stopped for its time was, in words, from a faulthandler dump (most recent call first):
+    the innermost frame of a file of the submission (``module_files``, names in its folder) and, when the call
+    was further in, the library function it was in. "" when no frame of the submission is found."""
+    for block in text.split("\n\n")[:8]:
+        frames = [m.groups() for m in map(_FRAME.match, block.splitlines()[:120]) if m]
+        own = next((k for k, (path, _, _) in enumerate(frames)
+                    if os.path.basename(path) in module_files and os.path.basename(os.path.dirname(path)) == "submission"),
+                   None)
+        if own is None:
+            continue
+        path, line, function = frames[own]
+        said = f": when it was stopped, it was at line {line} of your `{function}` ({os.path.basename(path)})"
+        if own == 0:
+            return said
+        inner_path, _, inner = frames[0]
+        parts = inner_path.replace("\\", "/").split("/")
+        library = next((name for key, name in (("numpy", "NumPy's"), ("cv2", "OpenCV's"), ("scipy", "SciPy's"),
+                                                ("skimage", "scikit-image's")) if key in parts), "")
+        said += f", inside {library + ' ' if library else ''}`{inner}`"
+        if library == "NumPy's" and "linalg" in parts:
+            said += (" (NumPy's linear algebra can run for ever on a matrix holding inf or NaN: is something divided "
+                     "by 0 before it?)")
+        return said
+    return ""
 
 FAILURE_KINDS = {
     "timeout", "crashed", "exception", "not_implemented", "missing_function",
@@ -410,6 +442,7 @@ class Sandbox:
         for name in self.WRITABLE:
             (self.scratch / name).mkdir()
         self.output_path.touch()  # bound into the worker's view: it must exist
+        (self.output_path.parent / STACK_NAME).touch()   # (and where the worker writes a late call's stack)
         self.confinement.prepare_scratch(self.scratch, private=("worker",))
 
     def _copy_submission(self):
@@ -526,7 +559,8 @@ class Sandbox:
             tasks = confine.count_tasks(uid)  # None where they cannot be counted (macOS): no limit
             processes = None if tasks is None else tasks + self.limits.extra_processes
         view = confine.View(scratch=self.scratch, read_only=(self.submission_dir, self.scratch / "worker"),
-                            files=(self.output_path,), size=self.limits.scratch_bytes)
+                            files=(self.output_path, self.output_path.parent / STACK_NAME),
+                            size=self.limits.scratch_bytes)
         command = self.confinement.wrap(
             [confine.INTERPRETER, "-I", "-B", str(self.scratch / "worker" / "worker.py"),
              str(request_r), str(response_w), str(self.submission_dir),
@@ -841,6 +875,8 @@ class Sandbox:
         self._started = True  # (a worker made ready before this request is started too)
         self._request_id += 1
         request = {**request, "id": self._request_id}
+        if request["op"] == "call":   # (where the call is, written shortly before it would be stopped)
+            request["stack_after"] = max(0.05, timeout - STACK_MARGIN)
         frame = transport.encode(request)
         self._measured = _Measures.now(self.cgroup)
         start = time.perf_counter()
@@ -871,7 +907,7 @@ class Sandbox:
                 raise transport.TransportError("more than one reply to one call")
         except TimeoutError:
             return self._abandon(self._fault(what, time.perf_counter() - start, timeout=timeout,
-                                             replying=replying))
+                                             replying=replying, where=self._where_it_was()))
         except _Stopped as stopped:
             return self._abandon(self._fault(what, time.perf_counter() - start, stopped=stopped.reason,
                                              replying=replying))
@@ -973,8 +1009,23 @@ class Sandbox:
         self._stop_worker()
         return outcome
 
+    def _where_it_was(self) -> str:
+        """Where the call was when it ran out of time, in words (": it was at line 42 of your `triangulate`,
+        inside NumPy's `svd`"), from the stack the worker wrote shortly before (see worker.StackAtDeadline);
+        "" when there is none. Read bounded, never following a link; only frames of the submission's own
+        files are named (the text is the worker's: it says where to look, and decides nothing)."""
+        try:
+            fd = os.open(self.output_path.parent / STACK_NAME, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+        except OSError:
+            return ""
+        with os.fdopen(fd, "rb") as f:
+            if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+                return ""
+            text = f.read(STACK_BYTES).decode("utf-8", errors="replace")
+        return where_stopped(text, {p.name for p in self.submission_dir.glob("*.py")})
+
     def _fault(self, what, seconds, timeout: float | None = None, stopped: str = "",
-               replying: int | None = None) -> CallOutcome:
+               replying: int | None = None, where: str = "") -> CallOutcome:
         """Why the worker stopped answering a request, decided from what the grader measured
         (before the worker is stopped): its own reason to stop it (``stopped``, see
         :meth:`_check_in`), the cgroup's counters, whether the worker still holds the grader's
@@ -1011,7 +1062,7 @@ class Sandbox:
                                         f"{held // 2**20} MB of memory by then (it may use "
                                         f"{self.memory // 2**20} MB)")
             return fault("timeout", f"{what} did not finish within {timeout:g} s "
-                                    "(an infinite loop, or far too slow?)")
+                                    f"(an infinite loop, or far too slow?){where}")
         try:
             code = self.confinement.exit_signal(self.proc.wait(timeout=2))
         except subprocess.TimeoutExpired:  # alive, but the pipe ended: it closed the grader's
