@@ -17,6 +17,7 @@ loops, lifetimes); limits are small so the file stays fast.
 import json
 import math
 import struct
+import re
 import tempfile
 import textwrap
 
@@ -381,11 +382,14 @@ def test_each_way_of_ending_gets_its_own_words(tmp_path, level):
             "kill_itself": ("crashed", "kill_itself() was killed (SIGKILL), not by the grader; do not kill processes"),
             "exit_at_once": ("crashed", "exit_at_once() ended the worker process (exit code 3); "
                                         "do not call os._exit() or kill processes"),
-            "loop": ("timeout", "loop() did not finish within 2 s (an infinite loop, or far too slow?)"),
+            "loop": ("timeout", "loop() did not finish within 2 s (an infinite loop, or far too slow?): when it was "
+                                "stopped, it was at line {line} of your `loop` (m.py)"),
         }
         for function, verdict in expected.items():
             outcome = box.call("m", function)
-            assert (outcome.kind, outcome.message) == verdict
+            line = re.search(r"line (\d+) of", outcome.message)   # (the loop's own lines: `while True:` or `pass`)
+            assert (outcome.kind, outcome.message) == (verdict[0], verdict[1].format(line=line and line.group(1)))
+            assert line is None or textwrap.dedent(PIPES).splitlines()[int(line.group(1)) - 1].strip() in ("while True:", "pass")
             assert box.call("m", "fine").value == 1
 
 
