@@ -4684,3 +4684,19 @@ def test_a_value_of_the_student_s_own_that_only_scales_or_shifts_is_made_neutral
     changes = _shown_changes(source, "neutral")
     assert ("np.abs(pts).max()", "1.0") in changes and ("centre = pts.mean()", "centre = 0.0") in changes, changes
     assert not any(before in ("pts.sum()", "k * 2") for before, _ in changes), changes
+
+
+def test_a_name_made_and_never_read_is_tried_where_a_number_is_written_after_it():
+    """`n = len(src)` never read, and a `1` in the normal matrix where the count of points belongs: `1` -> `n`;
+    numbers in an index, a keyword, or before the name is made are left as they are."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(src, x):
+            early = x * 2
+            n = len(src)
+            normal = np.array([[np.sum(x * x), np.sum(x)], [np.sum(x), 1]])
+            return normal, src[:, 0], np.sum(x, axis=0), early
+    """)
+    changes = _shown_changes(source, "unused_name")
+    assert ("[np.sum(x), 1]", "[np.sum(x), n]") in changes, changes
+    assert len(changes) == 1, changes

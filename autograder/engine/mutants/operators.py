@@ -76,6 +76,7 @@ OPERATORS = {
     "swap_axes": ("transpos", "axes", "channel", "rows", "columns"),   # img.T -> np.swapaxes(img, 0, 1)
     "scale_xy": ("x and y", "depth", "z", "scale", "every coordinate"),   # X * f -> X * np.array([f, f, 1.0])
     "neutral": ("scale", "normalis", "own step", "1", "0"),   # s = r.max() -> s = 1.0 (a scale applied and undone)
+    "unused_name": ("never used", "unused", "computes"),   # n = len(src) never read: `1` -> `n` where it belongs
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1425,7 +1426,8 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral", "middle_axis", "widen", "bracket", "perspective_warp",
+_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
+                                              "unused_name", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2655,6 +2657,35 @@ def _point_name(name: str) -> bool:
     return any(part in _POINT_WORDS for part in name.lower().split("_"))
 
 
+def _in_an_index(node, parents) -> bool:
+    """Whether ``node`` is part of an index (`dst[:, 0]`, `x[1:]`): a position, not a value."""
+    child = node
+    while id(child) in parents:
+        above = parents[id(child)][0]
+        if isinstance(above, ast.Subscript) and child is above.slice:
+            return True
+        if isinstance(above, ast.stmt):
+            return False
+        child = above
+    return False
+
+
+def _never_read(fn) -> list[tuple[str, int]]:
+    """(name, line) of the locals ``fn`` assigns once and never reads (read once per def)."""
+    if not hasattr(fn, "_never_read"):
+        assigned: dict = {}
+        read = set()
+        for n in ast.walk(fn):
+            if isinstance(n, ast.Name):
+                if isinstance(n.ctx, ast.Load):
+                    read.add(n.id)
+                elif isinstance(n.ctx, ast.Store):
+                    assigned.setdefault(n.id, []).append(n.lineno)
+        fn._never_read = [(name, lines[0]) for name, lines in assigned.items()
+                          if name not in read and len(lines) == 1 and not name.startswith("_")][:3]
+    return fn._never_read
+
+
 def _neutral_value(node, parent, parents):
     """A value of the student's own that only scales (every read of it multiplies or divides) or only shifts
     (every read adds or subtracts), made neutral: `scale = r.max()` -> `scale = 1.0` where the points are divided
@@ -2782,6 +2813,12 @@ def _student_changes(node, parent, parents, words):
     yield from _estimator_changes(node, parents)
     yield from _stacked_last(node, parents)
     yield from _neutral_value(node, parent, parents)
+    if isinstance(node, ast.Constant) and type(node.value) in (int, float) and not isinstance(parent, ast.keyword) \
+            and not _in_an_index(node, parents):
+        for name, line in _never_read(_def_of(node, parents)):
+            if line < node.lineno:
+                # (a value the code makes and never reads: meant for a place where a number is written instead)
+                yield "unused_name", name, ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult) and isinstance(node.left, ast.Name) \
             and isinstance(node.right, ast.Name) and _point_name(node.left.id) and not _point_name(node.right.id):
         # (3D points scaled whole where only x and y are: a magnification by f that scales the depth too, and
