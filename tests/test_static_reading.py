@@ -1327,3 +1327,19 @@ def test_a_matrix_from_a_literal_of_whole_numbers_truncates_a_fractional_scale_w
     assert "an integer array: the values written into it are truncated" not in one(source.format(dtype=", dtype=float", value="s"))
     assert "an integer array: the values written into it are truncated" not in one(
         source.format(dtype="", value="s").replace("[[1, 0, 0]", "[[1.0, 0, 0]"))
+
+
+READ_TWICE = "an iterator read twice: the second reading finds it empty"
+
+
+@pytest.mark.parametrize("source, found", [
+    # a generator read by the loop, then by np.fromiter: the second finds it empty
+    ("def f(ds, f0):\n    fs = (f0 * d for d in ds)\n    out = [g for g in fs]\n    return np.fromiter(fs, float), out", True),
+    ("def f(ds, f0):\n    fs = (f0 * d for d in ds)\n    return list(fs), sum(fs)", True),
+    # read once, through a wrapper in the loop's own header: one reading
+    ("def f(ds, f0):\n    fs = (f0 * d for d in ds)\n    return [(i, g) for i, g in enumerate(fs)]", False),
+    ("def f(ds, f0):\n    fs = (f0 * d for d in ds)\n    return [g for g in sorted(fs)]", False),
+    ("def f(ds, f0):\n    fs = [f0 * d for d in ds]\n    return np.fromiter(fs, float), [g for g in fs]", False),
+])
+def test_a_generator_read_by_a_loop_and_a_call_is_read_twice(source, found):
+    assert (READ_TWICE in one(source)) is found

@@ -2322,30 +2322,55 @@ def _reciprocal_as_inverse(name, function) -> list[Finding]:
     return []
 
 
+def _as_list(value) -> str:
+    """The list an iterator's maker would make: `[f(d) for d in ds]` for a generator, `list(zip(a, b))` else."""
+    if isinstance(value, ast.GeneratorExp):
+        return ast.unparse(ast.ListComp(value.elt, value.generators))
+    return f"list({ast.unparse(value)})"
+
+
+_CONSUMERS = {"list", "tuple", "set", "sorted", "sum", "min", "max", "any", "all", "fromiter", "dict",
+              "stack", "vstack", "hstack", "column_stack"}   # calls that read an iterator to its end
+
+
+def _dotted_name(node) -> str:
+    return f"{_dotted_name(node.value)}.{node.attr}" if isinstance(node, ast.Attribute) else \
+        node.id if isinstance(node, ast.Name) else ""
+
+
 def _iterator_read_twice(name, function) -> list[Finding]:
     """``pairs = zip(a, b)`` read by one loop (or comprehension) and then by another: an iterator is used up by the
     first, and the second sees nothing (no line drawn)."""
     made = {node.targets[0].id: node for node in _nodes(function)
             if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
-            and isinstance(node.value, ast.Call) and isinstance(node.value.func, ast.Name)
-            and node.value.func.id in _ITERATORS}
+            and (isinstance(node.value, ast.GeneratorExp)   # (a generator: `(f0 * d / z0 for d in distances)`)
+                 or (isinstance(node.value, ast.Call) and isinstance(node.value.func, ast.Name)
+                     and node.value.func.id in _ITERATORS))}
     if not made:
         return []
     readers: dict = {}
+    in_loops = {id(n) for node in _nodes(function) if isinstance(node, (ast.For, ast.comprehension))
+                for n in ast.walk(node.iter)}
     for node in _nodes(function):
         if isinstance(node, (ast.For, ast.comprehension)):
             for read in ast.walk(node.iter):
                 if isinstance(read, ast.Name) and read.id in made:
                     readers.setdefault(read.id, []).append(node)
+        elif isinstance(node, ast.Call) and id(node) not in in_loops \
+                and _dotted_name(node.func).rsplit(".", 1)[-1] in _CONSUMERS:
+            # (or a call that reads it whole: `np.fromiter(focal_lengths, ...)`, `list(pairs)`)
+            for read in node.args[:1]:
+                if isinstance(read, ast.Name) and read.id in made:
+                    readers.setdefault(read.id, []).append(node)
     for iterator, loops in readers.items():
         # (a first loop that may stop early -- `break` -- leaves the rest to the next one on purpose)
-        first = min(loops, key=lambda loop: _line(loop.iter))
+        first = min(loops, key=lambda loop: _line(loop.iter if isinstance(loop, (ast.For, ast.comprehension)) else loop))
         if len(loops) >= 2 and not (isinstance(first, ast.For) and any(isinstance(n, ast.Break) for n in ast.walk(first))):
             line = _line(made[iterator])
             return [Finding(name, line, "an iterator read twice: the second reading finds it empty",
                             f"{name} (line {line}) makes {iterator} with `{ast.unparse(made[iterator].value)}`, an "
-                            "iterator, and reads it in two loops: the first uses it up and the second finds nothing; "
-                            f"make it a list (`list({ast.unparse(made[iterator].value)})`)", certain=True)]
+                            "iterator, and reads it twice: the first reading uses it up and the second finds nothing; "
+                            f"make it a list (`{_as_list(made[iterator].value)}`)", certain=True)]
     return []
 
 
