@@ -30,6 +30,7 @@ import numpy as np
 from ..sandbox.beginner import uint8_wraps
 from ..sandbox.supervisor import CallOutcome, Sandbox
 from . import pictures
+from .claims import measured
 from .forms import shape_form
 from .inputs import NO_SUBMISSION
 from .registry import Check
@@ -520,6 +521,14 @@ class Trial:
             if canvas:   # (the array returned was made float by NumPy's default dtype: read, the cause)
                 self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}: " + canvas,
                           mistake="an image made with NumPy's default dtype (float64)")
+            unit = np.dtype(dtype) == np.uint8 and _unit_range(value)
+            if unit:   # (the image is in [0, 1]: converted as it is, every pixel becomes 0 or 1 -- black)
+                divided = _hints().divides_by_255(self)
+                self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}: " + measured(
+                          f"its values lie in [0, 1] (at most {unit:.3g}), a float image's range; a uint8 image holds "
+                          "0..255, so it needs scaling by 255 before the conversion (converted as it is, it would "
+                          "be black)") + (f". {divided}" if divided else ""),
+                          mistake="a float image in [0, 1] where a uint8 image in 0..255 is asked")
             self.fail(f"{what} returned dtype {value.dtype}; expected {np.dtype(dtype)}",
                       hint=_hints().UINT8_HINT.said(self) if np.dtype(dtype) == np.uint8 else "")
         if kind is not None and value.dtype.kind not in kind:
@@ -752,6 +761,16 @@ def _grader_failure(exc: BaseException) -> StudentFailure | None:
         if found is not None:
             return found
     return None
+
+
+def _unit_range(value) -> float:
+    """The largest value of a float image whose finite values all lie in [0, 1] (and are not all 0), else 0."""
+    if value.dtype.kind != "f" or value.ndim not in (2, 3) or min(value.shape[:2]) < 8:
+        return 0.0
+    finite = value[np.isfinite(value)]
+    if finite.size == 0 or finite.min() < 0 or finite.max() > 1.0 or finite.max() == 0:
+        return 0.0
+    return float(finite.max())
 
 
 def _hints():

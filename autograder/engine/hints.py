@@ -1064,6 +1064,21 @@ FLOAT_HINT = Hint("build it with dtype=float (an array of whole numbers is an in
 _CANVAS_MAKERS = ("zeros", "ones", "empty", "full")
 
 
+def divides_by_255(t) -> str:
+    """"Reading your code: ..." where the functions the check calls divide something by 255 (an image scaled to
+    [0, 1]), naming the line; "" otherwise."""
+    from .claims import from_code
+
+    for function in code_of(t).reachable(functions_read(t)):
+        for node in ast.walk(function):
+            divisor = node.right if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) else \
+                node.value if isinstance(node, ast.AugAssign) and isinstance(node.op, ast.Div) else None
+            if isinstance(divisor, ast.Constant) and type(divisor.value) in (int, float) and divisor.value == 255:
+                return from_code(f"Your code divides by 255 (line {node.lineno}, in `{function.name}`): that scales "
+                                 "the image to [0, 1]")
+    return ""
+
+
 def float_canvas(t) -> str:
     """A sentence naming ``np.zeros(image.shape)`` (``ones``, ``empty``, ``full``) written without a dtype
     in the functions ``t``'s calls reached -- an image made float64 by NumPy's default -- or ""."""

@@ -130,6 +130,13 @@ MISTAKES = {
         def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
             return np.swapaxes(_simulate_aperture(points, f, aperture, n_rays, seed), 0, 1)
         """, ["the axes are exchanged, (n_rays, n, 2)"]),
+    # the blind set 1204f's 09/06: the marked image scaled to [0, 1] and returned as floats
+    "project_onto_image returning the marked image as floats in [0, 1]": ("lab09.ex5", """
+        _reference_onto = project_onto_image
+        def project_onto_image(image, P, points):
+            marked, pts = _reference_onto(image, P, points)
+            return marked.astype(np.float32) / 255.0, pts
+        """, ["its values lie in [0, 1]", "Your code divides by 255 (line"]),
     "project_onto_image drawing on the image converted to RGB": ("lab09.ex5", """
         def project_onto_image(image, P, points):
             pts = project(P, points).reshape(-1, 2)
