@@ -4700,3 +4700,20 @@ def test_a_name_made_and_never_read_is_tried_where_a_number_is_written_after_it(
     changes = _shown_changes(source, "unused_name")
     assert ("[np.sum(x), 1]", "[np.sum(x), n]") in changes, changes
     assert len(changes) == 1, changes
+
+
+def test_a_test_of_one_twin_is_given_the_other_s_half():
+    """`if float(tx).is_integer():` before a shortcut that shifts by tx and ty: the twin's test added, `and
+    float(ty).is_integer()`; a test reading both twins already, or a name with no twin, is left as it is."""
+    source = textwrap.dedent("""
+        def graded(image, tx, ty, k):
+            if float(tx).is_integer():
+                return image
+            if tx > 0 and ty > 0:
+                return image
+            if k > 2:
+                return None
+            return image
+    """)
+    changes = _shown_changes(source, "twin_test")
+    assert changes == [("float(tx).is_integer()", "float(tx).is_integer() and float(ty).is_integer()")], changes

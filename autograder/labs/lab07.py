@@ -183,8 +183,9 @@ def translate_defaults(t):
 
 
 # Shifts of either sign, and a pure horizontal one: ty = 0 is an offset like any other (an image
-# shifted by slicing, image[:-ty], is empty there).
-GREY_SHIFTS = ((-30, 20), (45, 0))
+# shifted by slicing, image[:-ty], is empty there); and shifts whole in one direction only (code taking a
+# shortcut for whole pixels must test both).
+GREY_SHIFTS = ((-30, 20), (45, 0), (12, 7.8), (-6.8, 10))
 
 
 @ex1.check("translate keeps a grey image grey", points=2)

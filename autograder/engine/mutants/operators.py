@@ -77,6 +77,7 @@ OPERATORS = {
     "scale_xy": ("x and y", "depth", "z", "scale", "every coordinate"),   # X * f -> X * np.array([f, f, 1.0])
     "neutral": ("scale", "normalis", "own step", "1", "0"),   # s = r.max() -> s = 1.0 (a scale applied and undone)
     "unused_name": ("never used", "unused", "computes"),   # n = len(src) never read: `1` -> `n` where it belongs
+    "twin_test": ("both", "twin", "and", "only one"),   # if whole(tx): -> if whole(tx) and whole(ty):
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1427,7 +1428,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
-                                              "unused_name", "middle_axis", "widen", "bracket", "perspective_warp",
+                                              "unused_name", "twin_test", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2670,6 +2671,30 @@ def _in_an_index(node, parents) -> bool:
     return False
 
 
+class _Renamed(ast.NodeTransformer):
+    def __init__(self, old: str, new: str):
+        self.old, self.new = old, new
+
+    def visit_Name(self, node):
+        return ast.Name(self.new, node.ctx) if node.id == self.old else node
+
+
+def _twin_test(node, parent, parents):
+    """A condition testing one of two twins where the branch treats both (`if float(tx).is_integer():` before a
+    whole-pixel shift by tx and ty): the twin's test added, `... and float(ty).is_integer()`."""
+    if not (isinstance(parent, (ast.If, ast.IfExp, ast.While)) and parent.test is node) \
+            or isinstance(node, ast.BoolOp):
+        return
+    read = {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+    fn = _def_of(node, parents)
+    known = {a.arg for a in ast.walk(fn.args) if isinstance(a, ast.arg)} if hasattr(fn, "args") else set()
+    for name in sorted(read):
+        twins = [other for other in known if other not in read and twin_names(name, other)]
+        if len(twins) == 1:
+            twin = ast.unparse(_Renamed(name, twins[0]).visit(copy.deepcopy(node)))
+            yield "twin_test", f"{ast.unparse(node)} and {twin}", ""
+
+
 def _never_read(fn) -> list[tuple[str, int]]:
     """(name, line) of the locals ``fn`` assigns once and never reads (read once per def)."""
     if not hasattr(fn, "_never_read"):
@@ -2813,6 +2838,7 @@ def _student_changes(node, parent, parents, words):
     yield from _estimator_changes(node, parents)
     yield from _stacked_last(node, parents)
     yield from _neutral_value(node, parent, parents)
+    yield from _twin_test(node, parent, parents)
     if isinstance(node, ast.Constant) and type(node.value) in (int, float) and not isinstance(parent, ast.keyword) \
             and not _in_an_index(node, parents):
         for name, line in _never_read(_def_of(node, parents)):

@@ -521,7 +521,7 @@ class _Student:
         beside `if height == width and angle in quarter: return cv2.rotate(...)`): it mends by not taking
         the shortcut, so the slip is inside that branch, not on the changed line (``ran``: the lines the
         student's code ran on the failing inputs, to tell the branch it took). None otherwise."""
-        if len(fix.edits) != 1 or fix.operator in _IN_WORDS:
+        if len(fix.edits) != 1 or fix.operator in _IN_WORDS or fix.operator == "twin_test":
             return None
         where, ordinal, _, _ = fix.edits[0]
         nodes, parents = self._walk(where)
@@ -1472,6 +1472,9 @@ def _undoes_a_step(student, mutant, fix: Fix) -> bool:
     (:meth:`_Student.steers_a_branch`) or writing a permutation as the identity (`order = [0, 2, 1]` ->
     `[0, 1, 2]`): the step's own slip stays, where a change inside it mends it."""
     # (and a special case's whole block taken out -- `if ...: ...` -- which a change inside it mends too)
+    # (a test given its twin's half steers round the branch only where the twin says it must: the test is the slip)
+    if fix.operator == "twin_test":
+        return False
     return student.steers_a_branch(mutant) or any(_identity_order(after) and not _identity_order(before)
                                                   or _assigns_itself(after) for _, before, after in fix.changes) \
         or (fix.operator == "drop_statement" and fix.changes[0][1].startswith("if ") and " ... (lines " in fix.changes[0][1]
@@ -2655,7 +2658,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                     and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, not student.removes_a_mask_guard(pair[0]),
                                      not (refused_type and _converts(pair[0])),
-                                     pair[0].key not in exactly, not student.extra_block(pair[0]),
+                                     pair[0].key not in exactly, pair[1].operator != "twin_test",
+                                     not student.extra_block(pair[0]),
                                      _undoes_a_step(student, *pair),
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
@@ -2715,7 +2719,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     blocks = [pair for pair in fixes if student.extra_block(pair[0])]
     halves_made = [pair for pair in fixes if pair[1].operator in ADDITIONS
                    and any(student.inside_block(block, pair[1]) for block, _ in blocks)]
-    fixes = halves_made or blocks or fixes
+    # (and where the block's own test, given the twin it forgot, mends alike -- `if whole(tx):` made `if whole(tx)
+    # and whole(ty):` --, the step was meant, and its test is the slip; it is tried first, on the block's line)
+    tests_made = [pair for pair in fixes if pair[1].operator == "twin_test"]
+    fixes = halves_made or tests_made or blocks or fixes
     passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:
@@ -3545,6 +3552,9 @@ class _Variants:
         before cv2.circle, which clips): the change is not confirmed as the slip."""
         if self.student.raising_guard(mutant, getattr(self.trial, "raised_lines", ())):
             return False   # (the student's own test raised on a valid input: that test is the slip, not a guard)
+        if mutant.edits[0][2] == "twin_test":
+            return False   # (a test of one twin given the other's is what the code shows half written: a shortcut
+            #                 taken out mends too, as any shortcut's removal does, and says less)
         self.untested_guard = None
         for guard in self.student.guards(mutant):
             values = self.answers(guard, failing, self.inputs)
