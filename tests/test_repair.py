@@ -4717,3 +4717,16 @@ def test_a_test_of_one_twin_is_given_the_other_s_half():
     """)
     changes = _shown_changes(source, "twin_test")
     assert changes == [("float(tx).is_integer()", "float(tx).is_integer() and float(ty).is_integer()")], changes
+
+
+def test_a_small_number_added_to_keep_a_division_finite_is_taken_out():
+    """`X[:, 2:3] + 1e-6` -> `X[:, 2:3]`, `1e-9 - d` -> `-d`: only floats of at most 1e-3 count."""
+    source = textwrap.dedent("""
+        def graded(X, f, d):
+            x = f * X[:, :2] / (X[:, 2:3] + 1e-6)
+            y = d + 0.5
+            return x, 1e-9 - d, y
+    """)
+    changes = _shown_changes(source, "drop_epsilon")
+    assert ("X[:, 2:3] + 1e-06", "X[:, 2:3]") in changes and ("(x, 1e-09 - d, y)", "(x, -d, y)") in changes, changes
+    assert not any("0.5" in before for before, _ in changes)

@@ -591,12 +591,19 @@ def warp_affine_grey_default(t):
 
 @ex5.check("warp_affine with dsize=(width, height)", points=2)
 def warp_affine_dsize(t):
-    # grey, as the API allows (the other warp_affine check gives a colour image)
+    # grey, as the API allows (the other warp_affine check gives a colour image); then a colour image, whose
+    # output is made at dsize too (not like the input)
     source = photo("chelsea", (160, 120), grey=True)
     A = np.array([[1.2, 0.1, 5.0], [0.0, 1.1, -10.0]])
     what = "warp_affine(grey image, A, dsize=(220, 100))"
     try:
-        return judge_warp(t, what, call_on(t, what, "warp_affine", source, A, dsize=(220, 100)), source, A,
+        grey = judge_warp(t, what, call_on(t, what, "warp_affine", source, A, dsize=(220, 100)), source, A,
+                          truth.warp_mistakes(A), dsize=(220, 100), probe=image_probe(t, "warp_affine"))
+        if grey.fraction < 1:
+            return grey
+        colour = photo("chelsea", (160, 120))
+        what = "warp_affine(colour image, A, dsize=(220, 100))"
+        return judge_warp(t, what, call_on(t, what, "warp_affine", colour, A, dsize=(220, 100)), colour, A,
                           truth.warp_mistakes(A), dsize=(220, 100), probe=image_probe(t, "warp_affine"))
     except Fail as failure:
         # (unexplained by the image alone, and dsize read: does its value change anything? A dsize never read

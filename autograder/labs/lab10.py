@@ -324,6 +324,11 @@ def perspective_property(t):
     X = np.array([0.4, -0.3, 5.0])
     judge_single_point(t, "perspective_project((3,) point, f=500)", t.call("perspective_project", X, 500.0),
                        truth.pinhole(X, 500.0)[0])
+    # (the same scene a thousand times smaller, depths of millimetres: f X / Z does not depend on the unit)
+    X = truth.points_in_front(5, n=8) / 1000.0
+    judge_points(t, "perspective_project(points at millimetre depths, f=500)", t.call("perspective_project", X, 500.0),
+                 truth.pinhole(X, 500.0), perspective_mistakes(500.0, X), formulas=pinhole_formulas(X, 500.0),
+                 probe=projection_probe(t, "perspective_project"))
 
 
 def perspective_behind_case():

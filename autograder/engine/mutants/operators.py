@@ -78,6 +78,7 @@ OPERATORS = {
     "neutral": ("scale", "normalis", "own step", "1", "0"),   # s = r.max() -> s = 1.0 (a scale applied and undone)
     "unused_name": ("never used", "unused", "computes"),   # n = len(src) never read: `1` -> `n` where it belongs
     "twin_test": ("both", "twin", "and", "only one"),   # if whole(tx): -> if whole(tx) and whole(ty):
+    "drop_epsilon": ("epsilon", "small", "added", "1e-"),   # X[:, 2:3] + 1e-6 -> X[:, 2:3]
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1428,7 +1429,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
-                                              "unused_name", "twin_test", "middle_axis", "widen", "bracket", "perspective_warp",
+                                              "unused_name", "twin_test", "drop_epsilon", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2839,6 +2840,12 @@ def _student_changes(node, parent, parents, words):
     yield from _stacked_last(node, parents)
     yield from _neutral_value(node, parent, parents)
     yield from _twin_test(node, parent, parents)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)):
+        for tiny, other in ((node.right, node.left), (node.left, node.right)):
+            if isinstance(tiny, ast.Constant) and type(tiny.value) is float and 0 < abs(tiny.value) <= 1e-3:
+                # (a small number added to keep a division finite: it changes every value it is added to)
+                negated = tiny is node.left and isinstance(node.op, ast.Sub)   # (`eps - d` is `-d` without it)
+                yield "drop_epsilon", f"-{_operand(other)}" if negated else ast.unparse(other), ""
     if isinstance(node, ast.Constant) and type(node.value) in (int, float) and not isinstance(parent, ast.keyword) \
             and not _in_an_index(node, parents):
         for name, line in _never_read(_def_of(node, parents)):

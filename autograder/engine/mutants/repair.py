@@ -3008,7 +3008,7 @@ FIXES = 3         # the most fixes told (one per line)
 SHOWN_BY_THE_CODE = {"mirror", "sibling_step", "twin_step", "boolean_mask", "derived_name", "measure_first", "identity",
                      "first_term", "own_values", "estimator", "unused_name"}
 REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "unwrap", "drop_conversion",
-            "drop_mask", "drop_slice", "neutral"}   # changes that take a step out
+            "drop_mask", "drop_slice", "neutral", "drop_epsilon"}   # changes that take a step out
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
 ADDITIONS = {"sibling_step", "twin_step", "sibling_argument"}   # changes that add a twin's step beside a line
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is

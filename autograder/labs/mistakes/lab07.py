@@ -19,6 +19,18 @@ MISTAKES = {
             return params.reshape(2, 3)
         """, ["the translation first"]),
     # the blind set 1204c's 07/07: a one-pixel border added so the fill fades to black, never taken back
+    # the blind set 1204f's 07/05: the output made like the input, where dsize says its size
+    "warp_affine filling an output made like the input": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            height, width = image.shape[:2]
+            size = dsize or (width, height)
+            if image.ndim == 2:
+                return cv2.warpAffine(image, np.asarray(A, np.float64), size)
+            out = np.zeros_like(image)
+            for c in range(image.shape[2]):
+                out[..., c] = cv2.warpAffine(image[..., c], np.asarray(A, np.float64), size)
+            return out
+        """, ["could not broadcast"]),
     "warp_affine of a padded image": ("lab07.ex5", """
         def warp_affine(image, A, dsize=None):
             height, width = image.shape[:2]

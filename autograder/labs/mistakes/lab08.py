@@ -854,6 +854,13 @@ MISTAKES = {
             return _reference_match(img1, img2, ratio)
         """, ["the method argument is not followed"]),
     # ---------------------------------------------------------------- ext2
+    # the blind set 1204f's 08/05: the list of images made one array (images of one size only)
+    "stitch_many stacking the images into one array": ("lab08.ext2", """
+        _reference_many = stitch_many
+        def stitch_many(images):
+            images = np.asarray(images)
+            return _reference_many(list(images))
+        """, ["`images = np.asarray(images)`"]),
     "homographies chained in the wrong order": ("lab08.ext2", """
         def stitch_many(images):
             images = list(images)

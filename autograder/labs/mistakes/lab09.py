@@ -98,6 +98,16 @@ MISTAKES = {
         spread="1.0 + f / X[:, 2]", landed="(ideal[:, None, :] - A) * spread[:, None, None]"),
         ["`ideal[:, None, :] - A * spread[:, None, None]`"]),
     # the blind set 1204c's 09/06: a disc pasted through a window never clipped to the image
+    # the blind set 1204f's 09/04: every disc one pixel smaller than the radius asked
+    "draw_points with a radius one smaller": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(x)), int(round(y))), max(int(radius) - 1, 0),
+                               tuple(int(c) for c in color), -1)
+            return out
+        """, ["they are drawn smaller than the radius asked"]),
     "draw_points pasting a disc through an unclipped window": ("lab09.ex5", """
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
             out = image.copy()
@@ -462,6 +472,18 @@ MISTAKES = {
             rms, K, dist, _, _ = cv2.calibrateCamera([objp] * len(pts), pts, (w, h), None, None)
             return K, dist.ravel(), rms
         """, ["object points"]),
+    # the blind set 1204f's 09/01: r^2 capped at 1, the model held inside the unit circle only
+    "distortion with r^2 capped at 1": ("lab09.ext2", """
+        def distort_points(points, dist):
+            pts = np.asarray(points, dtype=np.float64)
+            x, y = pts[..., 0], pts[..., 1]
+            k1, k2, p1, p2, k3 = (list(np.ravel(dist)) + [0.0] * 5)[:5]
+            r2 = np.minimum(x * x + y * y, 1.0)
+            radial = 1 + k1 * r2 + k2 * r2 ** 2 + k3 * r2 ** 3
+            xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x)
+            yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y
+            return np.stack([xd, yd], axis=-1)
+        """, ["changing `np.minimum(x * x + y * y, 1.0)` to `x * x + y * y`"]),
     "distortion squaring with ^ (a bitwise XOR in Python)": ("lab09.ext2", """
         _distort_right = distort_points
         def distort_points(points, dist):

@@ -61,6 +61,14 @@ MISTAKES = {
             out = cv2.undistort(image, np.asarray(K, np.float64), np.asarray(dist, np.float64))
             return cv2.normalize(out, None, 0, 255, cv2.NORM_MINMAX)
         """, ["does not change their grey levels"]),
+    # the blind set 1204f's 10/06: a small number added to the depth to keep the division finite
+    "perspective projection dividing by Z + 1e-6": ("lab10.ex1", """
+        def perspective_project(points, f):
+            X = np.asarray(points, dtype=np.float64)
+            flat = X.reshape(-1, 3)
+            xy = f * flat[:, :2] / (flat[:, 2:3] + 1e-6)
+            return xy[0] if X.ndim == 1 else xy
+        """, ["changing `flat[:, 2:3] + 1e-06` to `flat[:, 2:3]`"]),
     "perspective projection shifted by half a pixel": ("lab10.ex1", """
         def perspective_project(points, f):
             X = np.asarray(points, dtype=np.float64)
