@@ -4730,3 +4730,20 @@ def test_a_small_number_added_to_keep_a_division_finite_is_taken_out():
     changes = _shown_changes(source, "drop_epsilon")
     assert ("X[:, 2:3] + 1e-06", "X[:, 2:3]") in changes and ("(x, 1e-09 - d, y)", "(x, -d, y)") in changes, changes
     assert not any("0.5" in before for before, _ in changes)
+
+
+def test_a_scaling_done_in_place_is_undone_the_other_way_and_counts_as_one_slip_at_two_places():
+    """`H[:2, 2] /= k` and `H[2, :2] *= k` (a denormalisation inverted): each flipped, and the two are the same slip,
+    so they are paired."""
+    source = textwrap.dedent("""
+        def graded(H, k):
+            H[:2, 2] /= k
+            H[2, :2] *= k
+            H += 1
+            return H
+    """)
+    changes = _shown_changes(source, "scale_inverse")
+    assert changes == [("H[:2, 2] /= k", "H[:2, 2] *= k"), ("H[2, :2] *= k", "H[2, :2] /= k")], changes
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    flips = [m for m in student.mutants("graded") if m.operator == "scale_inverse"]
+    assert len({student.slip(m) for m in flips}) == 1

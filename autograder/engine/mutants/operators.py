@@ -79,6 +79,7 @@ OPERATORS = {
     "unused_name": ("never used", "unused", "computes"),   # n = len(src) never read: `1` -> `n` where it belongs
     "twin_test": ("both", "twin", "and", "only one"),   # if whole(tx): -> if whole(tx) and whole(ty):
     "drop_epsilon": ("epsilon", "small", "added", "1e-"),   # X[:, 2:3] + 1e-6 -> X[:, 2:3]
+    "scale_inverse": ("invers", "divid", "multipl", "undo", "the other way"),   # H[:2, 2] /= k -> H[:2, 2] *= k
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -711,6 +712,12 @@ def _summed_up(fn) -> set[str]:
         fn._summed_up = {node.target.id for node in ast.walk(fn) if isinstance(node, ast.AugAssign)
                          and isinstance(node.op, ast.Add) and isinstance(node.target, ast.Name)}
     return fn._summed_up
+
+
+def _make_scale_inverse(node, payload):
+    """A scaling done in place the other way: `x /= k` -> `x *= k`, `x *= k` -> `x /= k`."""
+    return ast.AugAssign(copy.deepcopy(node.target), ast.Mult() if isinstance(node.op, ast.Div) else ast.Div(),
+                         copy.deepcopy(node.value))
 
 
 def _make_own_values(node, payload):
@@ -1445,7 +1452,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "whole_vector": _make_whole_vector, "quadrant": _make_quadrant, "swap_both": _make_swap_both,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
-         "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+         "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -2840,6 +2847,10 @@ def _student_changes(node, parent, parents, words):
     yield from _stacked_last(node, parents)
     yield from _neutral_value(node, parent, parents)
     yield from _twin_test(node, parent, parents)
+    if isinstance(node, ast.AugAssign) and isinstance(node.op, (ast.Mult, ast.Div)):
+        # (a scaling undone the wrong way round: the entries a normalisation divided, multiplied back, and those
+        # it multiplied, divided -- made at two places, it is one slip)
+        yield "scale_inverse", None, ""
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)):
         for tiny, other in ((node.right, node.left), (node.left, node.right)):
             if isinstance(tiny, ast.Constant) and type(tiny.value) is float and 0 < abs(tiny.value) <= 1e-3:

@@ -1200,7 +1200,7 @@ class _Student:
                         "column_order", "grey", "whole_shape", "move_factor", "convert_first",
                         "precedence", "drop_term", "python_numbers", "middle_axis", "widen", "bracket",
                         "perspective_warp", "size_given", "x_difference", "colour_axis", "drop_w",
-                        "power_xor", "half_pixel", "swap_axes", "stack_last", "own_values"):
+                        "power_xor", "half_pixel", "swap_axes", "stack_last", "own_values", "scale_inverse"):
             # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
             # by the third: the change is written out whole, alike in kind only)
             return repr(operator)
