@@ -4747,3 +4747,18 @@ def test_a_scaling_done_in_place_is_undone_the_other_way_and_counts_as_one_slip_
     student = repair._Student(source, ast.parse(source), {"graded"})
     flips = [m for m in student.mutants("graded") if m.operator == "scale_inverse"]
     assert len({student.slip(m) for m in flips}) == 1
+
+
+def test_names_assigned_together_are_given_the_values_their_twins_are_made_with():
+    """`y_min, y_max = 0.0, h - 1.0` below `x_min = corners[:, 0].min()` and `x_max = corners[:, 0].max()`:
+    the y values made as the x ones are, for the other axis; a tuple whose names have no twins is left."""
+    source = textwrap.dedent("""
+        def graded(corners, h):
+            x_min = corners[:, 0].min()
+            x_max = corners[:, 0].max()
+            y_min, y_max = 0.0, h - 1.0
+            a, b = 1, 2
+            return x_min, x_max, y_min, y_max, a, b
+    """)
+    changes = _shown_changes(source, "twin_values")
+    assert changes == [("(0.0, h - 1.0)", "(corners[:, 1].min(), corners[:, 1].max())")], changes

@@ -80,6 +80,7 @@ OPERATORS = {
     "twin_test": ("both", "twin", "and", "only one"),   # if whole(tx): -> if whole(tx) and whole(ty):
     "drop_epsilon": ("epsilon", "small", "added", "1e-"),   # X[:, 2:3] + 1e-6 -> X[:, 2:3]
     "scale_inverse": ("invers", "divid", "multipl", "undo", "the other way"),   # H[:2, 2] /= k -> H[:2, 2] *= k
+    "twin_values": ("twin", "as", "other axis", "like"),   # y_min, y_max = 0, h - 1 -> as x_min, x_max are made
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1436,7 +1437,7 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
-                                              "unused_name", "twin_test", "drop_epsilon", "middle_axis", "widen", "bracket", "perspective_warp",
+                                              "unused_name", "twin_test", "drop_epsilon", "twin_values", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2679,6 +2680,50 @@ def _in_an_index(node, parents) -> bool:
     return False
 
 
+class _OtherAxis(ast.NodeTransformer):
+    """The twin's expression: names renamed (``renames``) and a last index 0 made 1 (`corners[:, 0]` ->
+    `corners[:, 1]`), for a value made per axis."""
+
+    def __init__(self, renames: dict):
+        self.renames = renames
+
+    def visit_Name(self, node):
+        return ast.Name(self.renames.get(node.id, node.id), node.ctx)
+
+    def visit_Subscript(self, node):
+        self.generic_visit(node)
+        index = node.slice.elts[-1] if isinstance(node.slice, ast.Tuple) and node.slice.elts else node.slice
+        if isinstance(index, ast.Constant) and index.value in (0, 1) and type(index.value) is int:
+            index.value = 1 - index.value
+        return node
+
+
+def _twin_values(node, parent, parents):
+    """Names assigned together (`y_min, y_max = 0.0, h - 1.0`) whose twins are each assigned a value of their own
+    (`x_min = np.floor(corners[:, 0].min())`): given the twins' values for the other axis (`np.floor(corners[:,
+    1].min())`) -- one axis worked out, the other written from a guess."""
+    if not (isinstance(parent, ast.Assign) and parent.value is node and len(parent.targets) == 1
+            and isinstance(parent.targets[0], ast.Tuple) and isinstance(node, ast.Tuple)
+            and all(isinstance(t, ast.Name) for t in parent.targets[0].elts)
+            and len(node.elts) == len(parent.targets[0].elts) >= 2):
+        return
+    fn = _def_of(node, parents)
+    single = {}
+    for other in ast.walk(fn):
+        if isinstance(other, ast.Assign) and len(other.targets) == 1 and isinstance(other.targets[0], ast.Name) \
+                and other.lineno < parent.lineno:
+            single.setdefault(other.targets[0].id, other.value)
+    names = [t.id for t in parent.targets[0].elts]
+    twins = [next((other for other in single if twin_names(name, other)), None) for name in names]
+    if None in twins:
+        return
+    renames = dict(zip(twins, names))
+    values = [_OtherAxis(renames).visit(copy.deepcopy(single[twin])) for twin in twins]
+    text = ", ".join(ast.unparse(v) for v in values)
+    if text != ast.unparse(node).strip("()"):
+        yield "twin_values", f"({text})", ""
+
+
 class _Renamed(ast.NodeTransformer):
     def __init__(self, old: str, new: str):
         self.old, self.new = old, new
@@ -2847,6 +2892,7 @@ def _student_changes(node, parent, parents, words):
     yield from _stacked_last(node, parents)
     yield from _neutral_value(node, parent, parents)
     yield from _twin_test(node, parent, parents)
+    yield from _twin_values(node, parent, parents)
     if isinstance(node, ast.AugAssign) and isinstance(node.op, (ast.Mult, ast.Div)):
         # (a scaling undone the wrong way round: the entries a normalisation divided, multiplied back, and those
         # it multiplied, divided -- made at two places, it is one slip)
