@@ -4762,3 +4762,17 @@ def test_names_assigned_together_are_given_the_values_their_twins_are_made_with(
     """)
     changes = _shown_changes(source, "twin_values")
     assert changes == [("(0.0, h - 1.0)", "(corners[:, 1].min(), corners[:, 1].max())")], changes
+
+
+def test_a_branch_of_a_choice_read_where_the_choice_belongs_is_given_the_choice():
+    """`z = centroid[2] if z_avg is None else float(z_avg)`, then `centroid[2]` read again: `z` in its place; the
+    branch read before the choice is made, or a constant branch, is left."""
+    source = textwrap.dedent("""
+        def graded(c, z_avg, f):
+            before = c[2] * 2
+            z = c[2] if z_avg is None else float(z_avg)
+            anchor = f * c[:2] / c[2]
+            return anchor, z, before
+    """)
+    changes = _shown_changes(source, "chosen_value")
+    assert changes == [("f * c[:2] / c[2]", "f * c[:2] / z")], changes

@@ -81,6 +81,7 @@ OPERATORS = {
     "drop_epsilon": ("epsilon", "small", "added", "1e-"),   # X[:, 2:3] + 1e-6 -> X[:, 2:3]
     "scale_inverse": ("invers", "divid", "multipl", "undo", "the other way"),   # H[:2, 2] /= k -> H[:2, 2] *= k
     "twin_values": ("twin", "as", "other axis", "like"),   # y_min, y_max = 0, h - 1 -> as x_min, x_max are made
+    "chosen_value": ("chosen", "given", "instead of", "where"),   # z = c[2] if z_avg is None else z_avg; c[2] -> z
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1437,7 +1438,8 @@ def _make_constant(node, payload):
 
 
 _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
-                                              "unused_name", "twin_test", "drop_epsilon", "twin_values", "middle_axis", "widen", "bracket", "perspective_warp",
+                                              "unused_name", "twin_test", "drop_epsilon", "twin_values",
+                                              "chosen_value", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2698,6 +2700,32 @@ class _OtherAxis(ast.NodeTransformer):
         return node
 
 
+def _choices(fn) -> dict:
+    """text of a branch -> (name, line) of the assignments choosing between two values (`z = c[2] if z_avg is None
+    else float(z_avg)`), read once per def."""
+    if not hasattr(fn, "_choices"):
+        fn._choices = {}
+        for n in ast.walk(fn):
+            if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name) \
+                    and isinstance(n.value, ast.IfExp):
+                for branch in (n.value.body, n.value.orelse):
+                    if not isinstance(branch, (ast.Constant, ast.Name)):
+                        fn._choices.setdefault(ast.unparse(branch), (n.targets[0].id, n.lineno))
+    return fn._choices
+
+
+def _chosen_value(node, parents):
+    """One branch of a choice read where the choice belongs: `centroid[2]` after `z = centroid[2] if z_avg is None
+    else z_avg` -> `z` (the value given, when it is, left unused there)."""
+    if not isinstance(node, (ast.Subscript, ast.Call, ast.Attribute, ast.BinOp)) or getattr(node, "lineno", None) is None:
+        return
+    if isinstance(getattr(node, "ctx", ast.Load()), ast.Store):
+        return
+    chosen = _choices(_def_of(node, parents)).get(ast.unparse(node))
+    if chosen is not None and chosen[1] < node.lineno:
+        yield "chosen_value", chosen[0], ""
+
+
 def _twin_values(node, parent, parents):
     """Names assigned together (`y_min, y_max = 0.0, h - 1.0`) whose twins are each assigned a value of their own
     (`x_min = np.floor(corners[:, 0].min())`): given the twins' values for the other axis (`np.floor(corners[:,
@@ -2893,6 +2921,7 @@ def _student_changes(node, parent, parents, words):
     yield from _neutral_value(node, parent, parents)
     yield from _twin_test(node, parent, parents)
     yield from _twin_values(node, parent, parents)
+    yield from _chosen_value(node, parents)
     if isinstance(node, ast.AugAssign) and isinstance(node.op, (ast.Mult, ast.Div)):
         # (a scaling undone the wrong way round: the entries a normalisation divided, multiplied back, and those
         # it multiplied, divided -- made at two places, it is one slip)
