@@ -4776,3 +4776,22 @@ def test_a_branch_of_a_choice_read_where_the_choice_belongs_is_given_the_choice(
     """)
     changes = _shown_changes(source, "chosen_value")
     assert changes == [("f * c[:2] / c[2]", "f * c[:2] / z")], changes
+
+
+def test_the_array_a_loop_fills_made_anew_at_each_turn_is_made_before_the_loop():
+    """`for i in range(n): points = np.zeros((n, 3)); ...; points[i] = X` keeps the last point only: the allocation
+    moved before the loop; an array made in the loop and kept whole (appended) is left."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(n):
+            for i in range(n):
+                points = np.zeros((n, 3))
+                points[i] = i
+            frames = []
+            for i in range(n):
+                frame = np.zeros((2, 2))
+                frames.append(frame)
+            return points, frames
+    """)
+    changes = _shown_changes(source, "hoist")
+    assert len(changes) == 1 and changes[0][0] == "points = np.zeros((n, 3))" and "just before it" in changes[0][1]

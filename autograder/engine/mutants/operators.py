@@ -205,13 +205,14 @@ OPERATORS = {
     "move": ("before", "after", "order", "too early", "too late"),   # K = K / K[2, 2] moved after t = ... K ...
     "indent": ("inside", "loop", "if", "indent"),        # best = inliers moved into `if count > best_count:`
     "dedent": ("after", "loop", "outside", "indent"),    # a return inside a loop moved after it
+    "hoist": ("before", "loop", "once", "each turn", "anew"),   # for i: out = np.zeros(n); out[i] = ... -> out first
     "keep_parameter": ("overwrit", "each turn", "previous turn", "parameter"),   # f0 = f0 * d / z0 in a loop
     "undecomposed": ("decompos", "rebuilt", "singular", "svd"),   # return U @ diag(s') @ Vt -> return E
     "slice_order": ("revers", "order", "slice", "last"),   # shape[::-1][:2] -> shape[:2][::-1]
     "map_term": ("mapped", "linear part", "centroid", "transform"),   # dst_mean - src_mean -> dst_mean - L @ src_mean
     "centre_translation": ("centre", "center", "translation", "-R"),   # tvec = C -> tvec = -R @ C
 }
-_MOVES = {"simultaneous", "move", "indent", "dedent"}   # changes of where statements are
+_MOVES = {"simultaneous", "move", "indent", "dedent", "hoist"}   # changes of where statements are
 RANK = {name: index for index, name in enumerate(OPERATORS)}
 
 _NON_COMMUTATIVE = {ast.Sub: "subtraction", ast.Div: "division", ast.MatMult: "matrix product",
@@ -1111,6 +1112,12 @@ def _make_dedent(node, payload):
     return ast.copy_location(ast.If(ast.Constant(True), [new, last], []), node)
 
 
+def _make_hoist(node, payload):
+    new = copy.deepcopy(node)   # for ...: s; body -> s / for ...: body
+    first = new.body.pop(0)
+    return ast.copy_location(ast.If(ast.Constant(True), [first, new], []), node)
+
+
 def _make_guard(node, payload):
     # l / d -> np.where(d > 0, l / np.where(d > 0, d, 1), 0.0): divided only where the divisor is valid
     left, right = ast.unparse(node.left), ast.unparse(node.right)
@@ -1450,7 +1457,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant", "colour_scale")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
-         "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
+         "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "hoist": _make_hoist, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic, "from_end": _make_from_end, "frame_cross": _make_frame_cross,
          "whole_vector": _make_whole_vector, "quadrant": _make_quadrant, "swap_both": _make_swap_both,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
@@ -1886,7 +1893,7 @@ def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
         for loop, k, name, fresh in _overwritten_in_loop(fn):
             yield "keep_parameter", ordinals[id(loop)], (k, name, fresh), loop.body[k].lineno, ""
         for operator, edited, moved, side in _statement_moves(fn):
-            removed = ordinals[id(moved)] if operator != "dedent" else None
+            removed = ordinals[id(moved)] if operator not in ("dedent", "hoist") else None
             yield operator, ordinals[id(edited)], (removed, ast.unparse(moved), moved.lineno, side), moved.lineno, ""
         # A loop counted by a number written in the code beside an array sized by it: the count and the
         # sizes changed together (`np.zeros((12, 12))` and `for i in range(6)`: only six points used)
@@ -2062,6 +2069,12 @@ def _statement_moves(fn):
                 if isinstance(statement, (ast.For, ast.While, ast.If)) and len(statement.body) >= 2 \
                         and isinstance(statement.body[-1], _SIMPLE) and not statement.orelse:
                     yield "dedent", statement, statement.body[-1], "out"
+                if isinstance(statement, (ast.For, ast.While)) and len(statement.body) >= 2 \
+                        and _allocates(statement.body[0]) \
+                        and _stored_into(statement, next(iter(_assigned(statement.body[0])))):
+                    # (the array the loop fills, item by item, made anew at each turn: only the last turn's item
+                    # is left in it -- made once, before the loop)
+                    yield "hoist", statement, statement.body[0], "before"
                 if isinstance(statement, ast.For) and k > 0 and _allocates(statements[k - 1]) \
                         and _kept_each_time(statement, next(iter(_assigned(statements[k - 1])))):
                     # one array made before the loop and kept (appended, stored) at every turn: every item is
@@ -2121,6 +2134,13 @@ def _grows(statement, name: str) -> bool:
     return isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute) \
         and call.func.attr in ("append", "extend", "insert") \
         and isinstance(call.func.value, ast.Name) and call.func.value.id == name
+
+
+def _stored_into(loop, name: str) -> bool:
+    """Whether ``loop`` writes items of ``name`` (`points[i] = ...`)."""
+    return any(isinstance(n, (ast.Assign, ast.AugAssign)) and any(
+        isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name) and t.value.id == name
+        for t in (n.targets if isinstance(n, ast.Assign) else [n.target])) for n in ast.walk(loop))
 
 
 def _allocates(statement) -> bool:

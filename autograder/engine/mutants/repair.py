@@ -1330,7 +1330,9 @@ class _Student:
                           f"moving `{shown}` (line {line}{{inside}}) into the {block} above it (line {edited.lineno}), "
                           "as its last statement",
                 "dedent": f"moving `{shown}` (line {line}{{inside}}) out of the {block} of line {edited.lineno}, "
-                          "to just after it"}[operator]
+                          "to just after it",
+                "hoist": f"moving `{shown}` (line {line}{{inside}}) out of the {block} of line {edited.lineno}, to "
+                         "just before it (made at each turn, the array keeps only the last turn's item)"}[operator]
         return Fix(((line, text, said),), where, operator, mutant.edits)
 
     def shown(self, edit) -> tuple[int, str, str] | None:
