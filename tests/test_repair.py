@@ -4795,3 +4795,16 @@ def test_the_array_a_loop_fills_made_anew_at_each_turn_is_made_before_the_loop()
     """)
     changes = _shown_changes(source, "hoist")
     assert len(changes) == 1 and changes[0][0] == "points = np.zeros((n, 3))" and "just before it" in changes[0][1]
+
+
+def test_discs_drawn_one_pixel_smaller_are_told_so_and_mended_beside_it(tmp_path):
+    """`int(radius) - 1` for cv2.circle's radius: the check measures the discs smaller than the radius asked, and
+    the change that mends it is told beside that name."""
+    folder = edited_reference(tmp_path, "lab09_camera", (
+        "cv2.circle(out, (int(round(x)), int(round(y))), int(radius), color, thickness=-1)",
+        "cv2.circle(out, (int(round(x)), int(round(y))), int(radius) - 1, color, thickness=-1)"))
+    result = grade(folder, ["lab09.ex5"], pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab09.ex5") if c.score < c.max_score]
+    told = [c for c in failed if "drawn smaller than the radius asked" in c.message
+            and "`int(radius) - 1` to `int(radius)`" in c.message]
+    assert told, [c.message for c in failed]

@@ -272,7 +272,7 @@ MISTAKES = {
                 if np.isfinite(cx) and np.isfinite(cy):
                     out[(xx - round(cx)) ** 2 + (yy - round(cy)) ** 2 <= radius] = color if out.ndim == 3 else color[0]
             return out
-        """, ["<= radius ** 2"]),
+        """, ["they are drawn smaller than the radius asked"]),
     # the blind set 1202f's 09/06: points kept only where both coordinates are >= 0
     "draw_points keeping only the points inside the image": ("lab09.ex5", """
         def draw_points(image, pts, radius=3, color=(0, 0, 255)):
