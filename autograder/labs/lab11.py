@@ -2025,6 +2025,21 @@ STRUCTURE_MEDIAN = 0.08   # median relative 3-D error after one global scale
 STRUCTURE_P90 = 0.18      # its 90th percentile
 
 
+MOVED_WHOLE = "the 3D points are moved (centred, or shifted) out of camera 1's frame"
+
+
+def _moved_whole(got, X) -> float | None:
+    """The median relative 3D error (relative to the distance to camera 1) of ``got`` against ``X`` once both are
+    centred on their centroids and scaled alike: small for points right up to a shift; None when nothing fits."""
+    mine, theirs = got - got.mean(axis=0), X - X.mean(axis=0)
+    spread = np.linalg.norm(mine, axis=1)
+    if not np.isfinite(mine).all() or np.median(spread) == 0:
+        return None
+    scale = float(np.median(np.linalg.norm(theirs, axis=1) / np.maximum(spread, 1e-300)))
+    scale *= 1.0 if np.median(np.sum(mine * theirs, axis=1)) >= 0 else -1.0
+    return float(np.median(np.linalg.norm(scale * mine - theirs, axis=1) / np.linalg.norm(X, axis=1)))
+
+
 def structure_error(got, X) -> float:
     """Median distance of ``got`` to ``X`` after one global scale (sign included), relative to |X|."""
     ratios = np.linalg.norm(X, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300)
@@ -2135,6 +2150,14 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
             "return them in camera 1's frame (P1 = K [I | 0], P2 = K [R | t])"))
     if scale > 0 and median <= STRUCTURE_MEDIAN and p90 <= STRUCTURE_P90:
         return passed(summary)
+    moved = _moved_whole(got, X)
+    if moved is not None and moved < 0.5 * median:
+        centred = np.linalg.norm(got.mean(axis=0)) <= 1e-6 * max(1.0, float(np.abs(got).max()))
+        t.fail("your 3D points are the scene moved away from camera 1's frame: " + measured(
+               f"centred on their centroids, yours and the true points agree up to one scale (median error {moved:.1%} "
+               f"of the distance to camera 1, where it is {median:.0%} as they are)"
+               + (", and your points' centroid is at the origin: they are centred" if centred else "")
+               + "; return them in camera 1's frame, camera 1 at the origin (P1 = K [I | 0])"), mistake=MOVED_WHOLE)
     # With camera 1 right, every point lies on its true ray whatever else is wrong (even when
     # mirrored): only the first three entries of unit homogeneous vectors (norm below 1, and
     # |w| = sqrt(1 - |X|^2)) tell that w was not divided out.
