@@ -646,9 +646,11 @@ def triangulation_probe(t: Trial) -> Probe:
 
 @ex1.check("triangulate on a rectified rig recovers the points (Z = f b / d)", points=3)
 def triangulate_rig(t):
-    P1, P2, X, pts1, pts2 = truth.stereo_points(seed=3, n=12)
+    # (the first match on the top row, y = 0, the second on the left column, x = 0: pixels like any other)
+    P1, P2, X, pts1, pts2 = truth.stereo_points(seed=3, n=12, on_the_edges=True)
     got = t.call("triangulate", P1, P2, pts1, pts2)
-    verdict = judge_triangulation(t, "triangulate(P1, P2, pts1, pts2)", got, P1, P2, pts1, pts2, X)
+    verdict = judge_triangulation(t, "triangulate(P1, P2, pts1, pts2), match 0 on row y = 0, match 1 at x = 0", got,
+                                  P1, P2, pts1, pts2, X)
     return verdict
 
 
