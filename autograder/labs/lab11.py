@@ -766,11 +766,13 @@ def draw_through_matches(t):
     return passed(f"all {len(hit)} matches lie on drawn lines")
 
 
-@ex2.check("draw_epipolar_lines draws a line given at any scale: (a, b, c) times 2.5 is the same line", points=1)
+@ex2.check("draw_epipolar_lines draws a line given at any scale ((a, b, c) times 2.5 is the same line), "
+           "on an image of any size", points=1)
 def draw_any_scale(t):
     """A line (a, b, c) is homogeneous: every non-zero multiple is the same line. epipolar_lines scales its
     lines so that a^2 + b^2 = 1, but a line given otherwise is still to be drawn where it lies (a formula
-    that holds only for unit normals -- the foot of the perpendicular (-a c, -b c) -- draws it elsewhere)."""
+    that holds only for unit normals -- the foot of the perpendicular (-a c, -b c) -- draws it elsewhere).
+    And on a photograph's size, 2000 x 1500: ends clipped to a fixed number of pixels cut its lines short."""
     from fixtures.images import photo
 
     image = photo("coffee", (160, 120))
@@ -778,7 +780,11 @@ def draw_any_scale(t):
     what = "draw_epipolar_lines(image, 2.5 * lines) (lines with a^2 + b^2 = 6.25)"
     got = t.call("draw_epipolar_lines", image, 2.5 * unit)
     judge_drawing(t, what, got, image, unit, min_coverage=0.85)
-    return passed("the lines drawn where they lie, at a scale other than a^2 + b^2 = 1")
+    large = photo("coffee", (2000, 1500))
+    lines = truth.normalise_lines(np.array([[0.3, 1.0, -1200.0], [1.0, -0.4, -1500.0], [-0.05, 1.0, -100.0]]))
+    what = "draw_epipolar_lines(2000x1500 image, lines)"
+    judge_drawing(t, what, t.call("draw_epipolar_lines", large, lines), large, lines, min_coverage=0.85)
+    return passed("the lines drawn where they lie, at a scale other than a^2 + b^2 = 1, and across a large image")
 
 
 @ex2.check("draw_epipolar_lines twice on the same image: each drawing shows its own lines only", points=1)
