@@ -349,6 +349,25 @@ WHOLE_PIXEL_RATIO = 0.75   # the moved fit at most this share of the best fit wi
 WHOLE_PIXEL_FLOOR = 0.3    # grey levels: a fit within half a pixel nearer than this is exact
 
 
+DETAIL_KEPT = 0.4   # of the warp's fine detail any interpolation keeps (benchmarks/detail_kept.py)
+
+
+def detail_kept(got, expected, inside) -> float:
+    """The fine detail of ``got`` as a share of ``expected``'s (bilinear): the mean squared Laplacian of the grey
+    image over ``inside`` eroded by 2 px (the border, where the warp meets the fill, left out). Measured on four
+    photographs and four affine maps: nearest, cubic and Lanczos keep 1.1 to 4.1 times bilinear's, cv2.resize with
+    INTER_AREA shrinking by half 0.49 to 0.70; a 3x3 Gaussian blur after the warp 0.09 to 0.32. 1.0 where there is
+    too little to measure."""
+    def energy(image):
+        grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+        return cv2.Laplacian(grey.astype(np.float32), cv2.CV_32F) ** 2
+    kept = cv2.erode(np.asarray(inside, np.uint8), np.ones((5, 5), np.uint8)) > 0
+    if kept.sum() < 400:
+        return 1.0
+    wanted = float(energy(np.asarray(expected))[kept].mean())
+    return float(energy(np.asarray(got))[kept].mean()) / wanted if wanted > 1.0 else 1.0
+
+
 def whole_pixel_shift(got, source, M, dsize=None, inside=None) -> tuple[int, int, float, float] | None:
     """``(dx, dy, within, moved)`` when ``got`` is ``source`` warped by ``M`` and then moved by a whole
     pixel (dx, dy in -1, 0, 1), as measured by the mean blurred difference: ``moved`` from the warp so

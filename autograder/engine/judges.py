@@ -39,7 +39,7 @@ from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, ment
                     size_given_as_shape)
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, rows_left_out, rows_left_out_words,
-                      warp_error, whole_pixel_shift)
+                      warp_error, whole_pixel_shift, DETAIL_KEPT, detail_kept)
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
 
@@ -529,6 +529,12 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
                 "is (its centre or its corner at (0, 0)) moves an image by half a pixel at most; look for a pixel "
                 "added or lost on the way: a border added and not taken back, a shift split into a whole part and "
                 "a remainder that do not add up."), mistake=WHOLE_PIXEL_OFF)
+        detail = detail_kept(got, expected, inside)
+        if detail < DETAIL_KEPT:
+            return partial(0.5, measured(
+                f"{what}: the image content is in place but blurred: it keeps {detail:.0%} of the fine detail the warp "
+                f"keeps (any interpolation keeps at least half of it), as when the image is smoothed on the way"),
+                mistake=BLURRED)
         nonblack = fill_fraction(got, outside)
         if nonblack > FILL_TOLERANCE:
             held = fill_held(got, source, M, dsize, outside)
@@ -581,6 +587,7 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
 
 
 WHOLE_PIXEL_OFF = "the image is a whole pixel off"
+BLURRED = "the image is blurred (smoothed beyond any interpolation)"
 
 
 def _pixels(offset: int, positive: str, negative: str) -> str:
