@@ -582,8 +582,24 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
         mistake = confirm(t, SAME_ANSWER.join(name for name, _ in explained), probe)
         if mistake:
             t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
+    other = _other_map(got, source, M, dsize)
+    if other:
+        t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average: " + measured(
+               f"an affine map fitted to your image reproduces it: it is the input {other}"))
+        # (what the image shows, not a cause: the error model and the repairs still look for the slip that makes it)
     t.fail(f"{what} differs from the expected image by {error:.0f} grey levels on average "
            "(see the pictures).")
+
+
+def _other_map(got, source, M, dsize) -> str:
+    """For an affine ``M``: how the affine map that reproduces ``got`` differs from it (:mod:`.fitted_map`), else ""."""
+    from . import fitted_map
+
+    M = np.asarray(M, np.float64)
+    if M.shape == (3, 3) and not np.allclose(M[2], (0.0, 0.0, 1.0)):
+        return ""
+    fitted = fitted_map.fitted_affine(got, source, dsize)
+    return "" if fitted is None else fitted_map.told(fitted, M[:2], source)
 
 
 WHOLE_PIXEL_OFF = "the image is a whole pixel off"
