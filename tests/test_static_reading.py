@@ -281,6 +281,16 @@ FINDINGS = {
         def f(T1, T2, M, w):
             return np.linalg.inv(T2) @ M @ T1, w ** -1
         """),
+    "the null vector picked by the argmin of the singular values": ("""
+        def f(A, E):
+            _, S, Vt = np.linalg.svd(A)
+            U, _, Vt = np.linalg.svd(E)
+            return Vt[np.argmin(S)], U
+        """, """
+        def f(A):
+            U, S, Vt = np.linalg.svd(A)
+            return Vt[-1], U[:, np.argmin(S)]
+        """),
     "an iterator read twice: the second reading finds it empty": ("""
         def f(pts1, pts2):
             pairs = zip(pts1, pts2)

@@ -261,6 +261,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _grid_unpacked_as_x_y(name, function)
     found += _result_rounded(name, function)
     found += _where_tuple_counted(name, function)
+    found += _null_vector_by_argmin(name, function)
     found += _rows_repeated(name, function)
     found += _reciprocal_as_inverse(name, function)
     found += _iterator_read_twice(name, function)
@@ -2270,6 +2271,36 @@ def _where_tuple_counted(name, function) -> list[Finding]:
                             "returns a tuple of index arrays, one per axis, so its length is the number of axes "
                             "(1 for a 1-D condition), not how many entries pass; take the indices with "
                             "`np.where(...)[0]` or count with `np.count_nonzero(...)`", certain=True)]
+    return []
+
+
+def _null_vector_by_argmin(name, function) -> list[Finding]:
+    """``U, S, Vt = np.linalg.svd(A)`` then ``Vt[np.argmin(S)]``: S has min(rows, columns) values, so for fewer equations
+    than unknowns (8 point pairs, 9 unknowns) the null vector -- Vt's last row -- has no singular value, and the
+    argmin picks the row of the smallest one there is."""
+    made = {}
+    for node in _nodes(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
+                and len(node.targets[0].elts) == 3 and isinstance(node.value, ast.Call) \
+                and _attribute_path(node.value.func).endswith("svd") \
+                and all(isinstance(e, ast.Name) for e in node.targets[0].elts[1:]):
+            made.setdefault(node.targets[0].elts[2].id, set()).add(node.targets[0].elts[1].id)
+    if not made:
+        return []
+    for node in _nodes(function):
+        if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in made:
+            values = made[node.value.id]
+            if any(isinstance(n, ast.Call) and ((_attribute_path(n.func).endswith("argmin") and n.args
+                                                 and isinstance(n.args[0], ast.Name) and n.args[0].id in values)
+                                                or (isinstance(n.func, ast.Attribute) and n.func.attr == "argmin"
+                                                    and isinstance(n.func.value, ast.Name) and n.func.value.id in values))
+                   for n in ast.walk(node.slice)):
+                line = _line(node)
+                return [Finding(name, line, "the null vector picked by the argmin of the singular values",
+                                f"{name} (line {line}) takes `{ast.unparse(node)}`: np.linalg.svd gives as many singular "
+                                "values as the smaller side of the matrix, so with fewer equations than unknowns (8 "
+                                "point pairs for 9 unknowns) the null vector, Vt's last row, has none, and the argmin "
+                                "picks the row of the smallest one there is; take `Vt[-1]`")]
     return []
 
 
