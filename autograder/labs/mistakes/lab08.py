@@ -26,6 +26,29 @@ _STITCH_CANVAS = """
             shift = _translation(-x_min, -y_min)
             size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)"""
 
+# The reference's _compose, a feathered sum over the canvas of both images' corners, up to the panorama made of it.
+_COMPOSE_FEATHERED = """
+        def _compose(images, homographies):
+            corners = np.vstack([transform_points(H, _corners(im)) for im, H in zip(images, homographies)])
+            x_min, y_min = np.floor(corners.min(axis=0))
+            x_max, y_max = np.ceil(corners.max(axis=0))
+            shift = _translation(-x_min, -y_min)
+            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
+            total = np.zeros((size[1], size[0], 3), np.float64)
+            weights = np.zeros((size[1], size[0]), np.float64)
+            for image, H in zip(images, homographies):
+                h, w = image.shape[:2]
+                ones = np.zeros((h + 2, w + 2), np.uint8)
+                ones[1:-1, 1:-1] = 1
+                border_distance = cv2.distanceTransform(ones, cv2.DIST_L2, 3)[1:-1, 1:-1]
+                warped = apply_homography(_bgr(image), shift @ H, size).astype(np.float64)
+                weight = apply_homography(border_distance.astype(np.float32), shift @ H, size)
+                total += warped * weight[..., None]
+                weights += weight
+            panorama = {panorama}
+            return np.clip(np.round(panorama), 0, 255).astype(np.uint8)
+        """
+
 MISTAKES = {
     # the blind set 1204c's 08/05: the lines drawn on the canvas, the circles on its copy, and the copy returned
     "draw_matches drawing the lines on the canvas it does not return": ("lab08.ex3", """
@@ -730,49 +753,12 @@ MISTAKES = {
             return panorama
         """, ["uint8 images gives when it wraps round"]),
     # the blind set 1201d's 08/06: the feathered sum never divided by the summed weights
-    "panorama as the weighted sum, never divided by the weights": ("lab08.ex5", """
-        def _compose(images, homographies):
-            corners = np.vstack([transform_points(H, _corners(im)) for im, H in zip(images, homographies)])
-            x_min, y_min = np.floor(corners.min(axis=0))
-            x_max, y_max = np.ceil(corners.max(axis=0))
-            shift = _translation(-x_min, -y_min)
-            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
-            total = np.zeros((size[1], size[0], 3), np.float64)
-            weights = np.zeros((size[1], size[0]), np.float64)
-            for image, H in zip(images, homographies):
-                h, w = image.shape[:2]
-                ones = np.zeros((h + 2, w + 2), np.uint8)
-                ones[1:-1, 1:-1] = 1
-                border_distance = cv2.distanceTransform(ones, cv2.DIST_L2, 3)[1:-1, 1:-1]
-                warped = apply_homography(_bgr(image), shift @ H, size).astype(np.float64)
-                weight = apply_homography(border_distance.astype(np.float32), shift @ H, size)
-                total += warped * weight[..., None]
-                weights += weight
-            panorama = total
-            return np.clip(np.round(panorama), 0, 255).astype(np.uint8)
-        """, ["never divided by the sum of its weights", "adds the weights up in `weights`"]),
+    "panorama as the weighted sum, never divided by the weights": ("lab08.ex5", _COMPOSE_FEATHERED.format(
+        panorama="total"), ["never divided by the sum of its weights", "adds the weights up in `weights`"]),
     # the blind set 1204e's 08/07: the feathered sum divided by one number for the whole canvas
-    "panorama as the weighted sum divided by the largest summed weight": ("lab08.ex5", """
-        def _compose(images, homographies):
-            corners = np.vstack([transform_points(H, _corners(im)) for im, H in zip(images, homographies)])
-            x_min, y_min = np.floor(corners.min(axis=0))
-            x_max, y_max = np.ceil(corners.max(axis=0))
-            shift = _translation(-x_min, -y_min)
-            size = (int(x_max - x_min) + 1, int(y_max - y_min) + 1)
-            total = np.zeros((size[1], size[0], 3), np.float64)
-            weights = np.zeros((size[1], size[0]), np.float64)
-            for image, H in zip(images, homographies):
-                h, w = image.shape[:2]
-                ones = np.zeros((h + 2, w + 2), np.uint8)
-                ones[1:-1, 1:-1] = 1
-                border_distance = cv2.distanceTransform(ones, cv2.DIST_L2, 3)[1:-1, 1:-1]
-                warped = apply_homography(_bgr(image), shift @ H, size).astype(np.float64)
-                weight = apply_homography(border_distance.astype(np.float32), shift @ H, size)
-                total += warped * weight[..., None]
-                weights += weight
-            panorama = total / np.max(weights)
-            return np.clip(np.round(panorama), 0, 255).astype(np.uint8)
-        """, ["img1 is in place, only shifted, but its levels are scaled", "`weights[..., None]`"]),
+    "panorama as the weighted sum divided by the largest summed weight": ("lab08.ex5", _COMPOSE_FEATHERED.format(
+        panorama="total / np.max(weights)"),
+        ["img1 is in place, only shifted, but its levels are scaled", "`weights[..., None]`"]),
     # the blind set 1203b's 08/07: img2 warped onto the canvas, img1 pasted over it (nothing blended)
     "stitch pasting img1 over the warped img2": ("lab08.ex5", _STITCH_CANVAS + """
             panorama = apply_homography(_bgr(img2), shift @ H21, size)
