@@ -178,3 +178,24 @@ def test_a_repeated_entry_is_read_in_a_row_of_a_not_in_a_matrix_written_flat():
     assert read("[x2 * x1, x2 * y1, x2, y2 * x1, y2 * y1, y2, x1, y1, 1]") == ""
     assert read("[s, 0, 0, 0, s, 0, 0, 0, 0]") == ""
     assert read("[0, -t[2], t[1], t[2], 0, -t[0], -t[1], t[0], 0]") == ""
+
+
+def test_an_svd_per_pair_in_a_loop_is_no_batched_svd():
+    """Vt[-1] of each pair's own 4 x 4 system, taken in a loop, is that system's solution: a result short of rows
+    (4 for 5 points, a row lost elsewhere) is not told as the last row of a batched SVD."""
+    per_pair = read_code(textwrap.dedent("""
+        def triangulate(P1, P2, pts1, pts2):
+            out = []
+            for (x, y), (u, v) in zip(pts1[1:], pts2[1:]):
+                A = np.array([x * P1[2] - P1[0], y * P1[2] - P1[1], u * P2[2] - P2[0], v * P2[2] - P2[1]])
+                Vt = np.linalg.svd(A)[2]
+                out.append(Vt[-1][:3] / Vt[-1][3])
+            return np.array(out)
+        """))
+    batched = read_code(textwrap.dedent("""
+        def triangulate(A):
+            Vt = np.linalg.svd(A)[2]
+            return Vt[-1][:, :3] / Vt[-1][:, 3:]
+        """))
+    assert code_signs._svd_in_a_loop(per_pair.reachable(["triangulate"]))
+    assert not code_signs._svd_in_a_loop(batched.reachable(["triangulate"]))

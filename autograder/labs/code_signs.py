@@ -178,6 +178,18 @@ LAST_VT_OF_A_STACK = "the last row of a batched SVD's Vt is taken (Vt[-1]) inste
 TAKES_LAST_ROW_OF_VT = takes_last_row_of_vt()
 
 
+def _svd_in_a_loop(functions) -> bool:
+    """Whether the functions read take an SVD inside a loop (or a comprehension): one system at a time."""
+    for function in functions:
+        for loop in ast.walk(function):
+            inside = loop.body if isinstance(loop, (ast.For, ast.While)) else \
+                [loop.elt] if isinstance(loop, (ast.ListComp, ast.GeneratorExp)) else []
+            if any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("svd", "SVDecomp")
+                   for part in inside for n in ast.walk(part)):
+                return True
+    return False
+
+
 def name_batched_vt_row(t, what: str, got, n: int, size: int = 4, function: str = "triangulate"):
     """Fail naming ``Vt[-1]`` of an SVD of a stack of ``size x size`` systems when the answer has
     ``size`` rows for ``n`` points (its first dimension is the system's size, not N: measured) and the
@@ -185,9 +197,10 @@ def name_batched_vt_row(t, what: str, got, n: int, size: int = 4, function: str 
     ``Vt[-1]`` is the last point's whole ``Vt``, each point's solution is ``Vt[:, -1]``."""
     if not (isinstance(got, np.ndarray) and got.ndim == 2 and got.shape[0] == size != n):
         return
-    found = TAKES_LAST_ROW_OF_VT.found(code_of(t).reachable([function]))
-    if not found:
-        return
+    read = code_of(t).reachable([function])
+    found = TAKES_LAST_ROW_OF_VT.found(read)
+    if not found or _svd_in_a_loop(read):
+        return   # (an SVD per system, in a loop: its Vt[-1] is that system's solution, and the rows went elsewhere)
     t.fail(f"{what} returned shape {got.shape} for {n} points: {size} rows is the size of each point's "
            f"{size} x {size} system, not the number of points. It looks like {LAST_VT_OF_A_STACK}: your code "
            + from_code(f"takes Vt[-1]; for A of shape (N, {size}, {size}) np.linalg.svd gives Vt of shape "
