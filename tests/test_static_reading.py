@@ -291,6 +291,21 @@ FINDINGS = {
             U, S, Vt = np.linalg.svd(A)
             return Vt[-1], U[:, np.argmin(S)]
         """),
+    "the lens model centred on the points' centroid": ("""
+        def f(pts, k1):
+            cx, cy = pts.mean(axis=0)
+            x = pts[:, 0] - cx
+            y = pts[:, 1] - cy
+            r2 = x ** 2 + y ** 2
+            return 1 + k1 * r2
+        """, """
+        def f(pts, k1, K):
+            cx, cy = K[0, 2], K[1, 2]
+            x = (pts[:, 0] - cx) / K[0, 0]
+            y = (pts[:, 1] - cy) / K[1, 1]
+            r2 = x ** 2 + y ** 2
+            return 1 + k1 * r2, pts.mean(axis=0)
+        """),
     "an iterator read twice: the second reading finds it empty": ("""
         def f(pts1, pts2):
             pairs = zip(pts1, pts2)

@@ -1629,6 +1629,27 @@ def _squared_names(node) -> tuple | None:
     return tuple(names)
 
 
+_MEANS = {"mean", "median", "average", "nanmean"}
+
+
+def _is_a_mean(node) -> bool:
+    """`pts.mean(axis=0)`, `np.mean(x)`, `np.median(...)`: a value of the data's own middle."""
+    return isinstance(node, ast.Call) and _attribute_path(node.func).rsplit(".", 1)[-1] in _MEANS or (
+        isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in _MEANS)
+
+
+def _centroid_names(function) -> set[str]:
+    """The names bound to a mean, whole or unpacked (`cx, cy = pts.mean(axis=0)`), or to an item of one."""
+    names = set()
+    for node in _nodes(function):
+        if isinstance(node, ast.Assign):
+            value = node.value.value if isinstance(node.value, ast.Subscript) else node.value
+            if _is_a_mean(value):
+                for target in node.targets:
+                    names |= {n.id for n in ast.walk(target) if isinstance(n, ast.Name)}
+    return names
+
+
 def _distortion_in_pixels(name, function) -> list[Finding]:
     """A lens model (a `k1` read) whose radius is taken of pixel offsets: `r2 = x * x + y * y` with
     `x = u - cx` and nothing divided by a focal length -- the coefficients are of normalised coordinates."""
@@ -1645,15 +1666,27 @@ def _distortion_in_pixels(name, function) -> list[Finding]:
                 isinstance(v, ast.BinOp) and isinstance(v.op, ast.Sub)
                 and not any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) for n in ast.walk(v)) for v in values)
         return offsets[part]
+    centroids = _centroid_names(function)
+
+    def about_a_centroid(part: str) -> bool:
+        """A difference from the points' own mean (`x = pts[:, 0] - cx`, `cx, cy = pts.mean(axis=0)`)."""
+        return any(isinstance(v, ast.BinOp) and isinstance(v.op, ast.Sub) and (
+            (isinstance(v.right, ast.Name) and v.right.id in centroids) or _is_a_mean(v.right))
+            for v in made.get(part, []))
     for node in _nodes(function):
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
             continue
         pair = _squared_names(node.value)
         if pair is None:
             continue
+        line = _line(node)
+        shown = ", ".join(f"`{part} = {ast.unparse(made[part][0])}`" for part in pair if made.get(part))
+        if all(about_a_centroid(part) for part in pair):
+            return [Finding(name, line, "the lens model centred on the points' centroid",
+                            f"{name} (line {line}) takes the radius of {shown}, offsets from the points' own mean: "
+                            "the lens model's centre is fixed (the principal point, (0, 0) in normalised coordinates), "
+                            "not the centroid of the points given, which moves with them")]
         if all(pixel_offset(part) for part in pair):
-            line = _line(node)
-            shown = ", ".join(f"`{part} = {ast.unparse(made[part][0])}`" for part in pair)
             return [Finding(name, line, "the lens model evaluated on pixel offsets, not normalised coordinates",
                             f"{name} (line {line}) takes the radius of {shown}, offsets in pixels, but the "
                             "distortion coefficients are of normalised coordinates ((u - cx) / fx, (v - cy) / fy): "
