@@ -1534,21 +1534,25 @@ def project_onto_twice(t):
     return passed("the second drawing shows its own points only")
 
 
+OPTION_COLOUR = (40, 200, 90)
+
+
 @ex5.check("draw_points with radius, colour, and points off the image and on its border", points=2)
 def draw_options(t):
+    # (a colour with a channel between 0 and 255: one scaled to [0, 1] and back, or saturated, shows)
     image = photo("coffee", (160, 120))
     # off the image, then on its first and last columns and rows (the ends of 0..W-1, 0..H-1)
     pts = np.array([[40.0, 40.0], [120.4, 80.6], [-30.0, 50.0], [500.0, 60.0], [0.0, 119.0], [159.0, 0.0]])
     def redraw(radius: int) -> int | None:   # the radius drawn when another is asked
         try:
-            got = t.call("draw_points", image, pts, radius=radius, color=(0, 255, 0))
+            got = t.call("draw_points", image, pts, radius=radius, color=OPTION_COLOUR)
         except StudentFailure:
             return None
-        return _drawn_radius(got, image, pts, (0, 255, 0)) if isinstance(got, np.ndarray) else None
+        return _drawn_radius(got, image, pts, OPTION_COLOUR) if isinstance(got, np.ndarray) else None
 
-    return judge_drawing(t, "draw_points(image, pts, radius=6, color=(0, 255, 0))",
-                         t.call("draw_points", image, pts, radius=6, color=(0, 255, 0)),
-                         image, pts, radius=6, color=(0, 255, 0), redraw=redraw)
+    return judge_drawing(t, f"draw_points(image, pts, radius=6, color={OPTION_COLOUR})",
+                         t.call("draw_points", image, pts, radius=6, color=OPTION_COLOUR),
+                         image, pts, radius=6, color=OPTION_COLOUR, redraw=redraw)
 
 
 LEFT_OUT_OFF_THE_IMAGE = from_code("circles centred just off the image are left out by a test of the image's bounds")
