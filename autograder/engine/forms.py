@@ -155,9 +155,9 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
         return Form(measured(f"the same lengths, but the axes are in the wrong order ({which}: stacked along another "
                              f"axis, or transposed?)"), "the axes are in the wrong order")
     if len(expected) == 1 and len(got) == 2 and 1 in got and _fits((max(got),), expected):
+        # (no way back is told: the values may be wrong too -- a cv2 call reading a short array as a Scalar)
         return Form(measured(f"it looks like a {'column' if got[1] == 1 else 'row'} of shape {got} where a flat "
-                             f"array of {max(got)} values is asked (ravel() it)"),
-                    "a 2-D column or row where a flat array is asked")
+                             f"array of {max(got)} values is asked"), "a 2-D column or row where a flat array is asked")
     if len(got) == 1 and len(expected) == 2 and None not in expected and got[0] == expected[0] * expected[1]:
         # (no way back is told: a reshape mends rows written one after the other, and scrambles columns
         # written one after the other -- np.hstack of an x and a y column)
