@@ -17,6 +17,8 @@ import numpy as np
 
 from fixtures.images import warp
 
+from .claims import measured
+
 FEATURES = 800        # ORB features per image
 REPRODUCED = 6.0      # grey levels: the fitted map's warp within this of the student's image (blurred, mean)
 LINEAR_ALIKE = 0.02   # relative: the linear parts agree within this
@@ -107,8 +109,8 @@ def told(fitted, asked, source) -> str:
         said = f"warped about the point {_pair(mine)}, where the map asked turns about {_pair(theirs)}"
         centroid = centroid_of(source)
         if centroid is not None and np.linalg.norm(centroid - mine) <= CENTROID_NEAR:
-            said += ("; that point is the image's brightness centroid (what cv2.moments gives), where the centre asked is a "
-                     "point of the frame")
+            said += measured("; that point is the image's brightness centroid (what cv2.moments gives), where the centre "
+                             "asked is a point of the frame")
         return said
     mine, theirs = _similarity(L), _similarity(La)
     if mine is not None and theirs is not None:

@@ -2157,7 +2157,7 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
     if scale > 0 and median <= STRUCTURE_MEDIAN and p90 <= STRUCTURE_P90:
         return passed(summary)
     moved = _moved_whole(got, X)
-    if moved is not None and moved < 0.5 * median:
+    if moved is not None and moved <= STRUCTURE_MEDIAN and moved < 0.5 * median:
         centred = np.linalg.norm(got.mean(axis=0)) <= 1e-6 * max(1.0, float(np.abs(got).max()))
         t.fail("your 3D points are the scene moved away from camera 1's frame: " + measured(
                f"centred on their centroids, yours and the true points agree up to one scale (median error {moved:.1%} "

@@ -2813,9 +2813,9 @@ def _never_read(fn) -> list[tuple[str, int]]:
 
 
 def _neutral_value(node, parent, parents):
-    """A value of the student's own that only scales (every read of it multiplies or divides) or only shifts
-    (every read adds or subtracts), made neutral: `scale = r.max()` -> `scale = 1.0` where the points are divided
-    by it, treated, and multiplied back (a model that holds at the coordinates as they are, not rescaled)."""
+    """A value of the student's own that only scales (every read of it multiplies or divides), made neutral:
+    `scale = r.max()` -> `scale = 1.0` where the points are divided by it, treated, and multiplied back (a model
+    that holds at the coordinates as they are, not rescaled)."""
     if not (isinstance(parent, ast.Assign) and parent.value is node and len(parent.targets) == 1
             and isinstance(parent.targets[0], ast.Name) and not isinstance(node, ast.Constant)):
         return
@@ -2826,8 +2826,7 @@ def _neutral_value(node, parent, parents):
         return   # (a value read once, or assigned again, is a step of another kind)
     if all(isinstance(op, (ast.Mult, ast.Div)) for op in uses):
         yield "neutral", "1.0", ""
-    elif all(isinstance(op, (ast.Add, ast.Sub)) for op in uses):
-        yield "neutral", "0.0", ""
+    # (a value only added or subtracted is a centring: drop_centring takes it out, told where it is undone)
 
 
 def _uses_of(fn) -> dict:
