@@ -1144,6 +1144,13 @@ def aperture_seed(t):
     if np.array_equal(a, c):
         t.fail("simulate_aperture gave the same rays for seeds 123 and 124: the seed is ignored.",
                mistake="the seed is ignored")
+    # (0 is a seed like any other: a test of the seed's truth, `if seed:`, takes it for no seed)
+    zero, what = _aperture_call(t, X, 0.3, 50, 0)
+    again, _ = _aperture_call(t, X, 0.3, 50, 0)
+    if not np.array_equal(zero, again):
+        t.fail(f"{what} gave different rays on a second call with the same seed 0: " + measured(
+               "seed=0 is taken for no seed (0 is a seed like any other; `if seed is None` tells no seed apart, "
+               "`if seed` does not)"), mistake="seed=0 taken for no seed")
 
 
 # The API asks for "random points of a circular pinhole", not points uniform over its area: a

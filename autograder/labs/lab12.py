@@ -1676,7 +1676,13 @@ def block_matching_form(t):
     rest = truth.bad_pixel_rate(got, truth.band(scene.judged, max_disparity, 9), scene.threshold)
     if rest <= bm_figures("random_dots")["legitimate"] + SLACK + FADE:
         judge_left_strip(t, what, got, max_disparity)
-    return passed(measured("a float map in 0..max_disparity; no disparity points left of the right image"))
+    # (and a pair narrower than the search range, as the API allows: a map of its size, no error)
+    left, right = (np.ascontiguousarray(np.array(image)[:, :12]) for image in (scene.left, scene.right))
+    narrow = f"block_matching(left, right, max_disparity={max_disparity}) on a pair 12 pixels wide"
+    t.expect_array(t.call("block_matching", left, right, max_disparity=max_disparity), narrow, shape=left.shape[:2],
+                   kind="f")
+    return passed(measured("a float map in 0..max_disparity; no disparity points left of the right image; a pair "
+                           "narrower than the search range answered in its size"))
 
 
 # A left pixel x has its match at x - d in the right image, whose first column is 0: d <= x (+ half a

@@ -70,6 +70,12 @@ MISTAKES = {
             return _divide((X + p4) @ M.T, single)
         """, ["`X @ M.T + p4`"]),
     # the blind set 1204d's 09/03: the blur scale made with f = 1 (the sheet's example) whatever f is
+    # the blind set 1204g's 09/02: a seed of 0 taken for no seed
+    "simulate_aperture taking seed 0 for no seed": ("lab09.ex4", """
+        _reference_aperture = simulate_aperture
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=None):
+            return _reference_aperture(points, f, aperture, n_rays=n_rays, seed=seed if seed else None)
+        """, ["seed=0 is taken for no seed"]),
     "aperture spread 1 + 1 / Z whatever the focal length": ("lab09.ex4", _APERTURE.format(
         spread="1.0 + 1.0 / X[:, 2]", landed="ideal[:, None, :] - A * spread[:, None, None]"),
         ["aperture * (1 + c / Z) with c = 1"]),

@@ -138,6 +138,21 @@ MISTAKES = {
             shifts = np.arange(n_bits - 1, -1, -1)[:, None]
             return (((gray[None, :] >> shifts) & 1) * 255).astype(np.uint8)
         """, ["the stripe index is one too large"]),
+    # the blind set 1204g's 12/02: the search not capped at the image's width (a pair narrower than the range raises)
+    "block_matching searching past the image's width": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            left, right = _grey_float(left), _grey_float(right)
+            height, width = left.shape
+            best, disparity = np.full((height, width), np.inf), np.zeros((height, width))
+            for d in range(int(max_disparity) + 1):
+                shifted = np.zeros_like(right)
+                shifted[:, d:] = right[:, :width - d]
+                ssd = _box_mean((left - shifted) ** 2, int(block_size))
+                ssd[:, :d] = np.inf
+                better = ssd < best
+                best[better], disparity[better] = ssd[better], d
+            return disparity
+        """, ["`shifted[:, d:]`", "(`d` = 13)"]),
     # the blind set 1204c's 12/05: the integral image padded at the end only, so each block sum is the block
     # whose corner is the pixel (the map moved by half a block)
     "block_matching summing blocks from their corner": ("lab12.ex4", """
