@@ -56,6 +56,15 @@ MISTAKES = {
             return np.array(rows, dtype=np.float64).reshape(-1, 6)
         """, ["a board rocking through face-on", "the pose is off by"]),
     # the blind set 1204c's 10/06: the undistorted image stretched to the full range afterwards
+    # the blind set 1204g's 10/03: the "no distortion" shortcut testing k1 and k2 only
+    "undistort_image skipping lenses with k1 = k2 = 0": ("lab10.ext1", """
+        _reference_undistort = undistort_image
+        def undistort_image(image, K, dist):
+            d = np.ravel(np.asarray(dist, dtype=np.float64))
+            if d[0] == 0 and d[1] == 0:
+                return image.copy()
+            return _reference_undistort(image, K, dist)
+        """, ["it is the input unchanged, as if the lens had no distortion"]),
     "undistort_image stretching the result to 0..255": ("lab10.ext1", """
         def undistort_image(image, K, dist):
             out = cv2.undistort(image, np.asarray(K, np.float64), np.asarray(dist, np.float64))
