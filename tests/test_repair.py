@@ -4809,3 +4809,19 @@ def test_discs_drawn_one_pixel_smaller_are_told_so_and_mended_beside_it(tmp_path
     told = [c for c in failed if "drawn smaller than the radius asked" in c.message
             and "`int(radius) - 1` to `int(radius)`" in c.message]
     assert told, [c.message for c in failed]
+
+
+def test_a_list_closed_one_item_early_in_a_numpy_call_takes_the_item_in():
+    """`np.diag([sx, sy], 1)` (1 read as the diagonal's offset) -> `np.diag([sx, sy, 1])`; a call given a list and a
+    string, or a keyword, is left as it is."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(sx, sy, x):
+            S = np.diag([sx, sy], 1)
+            a = np.array([x, x], "float64")
+            b = np.sum([x, x], axis=0)
+            return S, a, b
+    """)
+    changes = _shown_changes(source, "bracket")
+    assert ("np.diag([sx, sy], 1)", "np.diag([sx, sy, 1])") in changes, changes
+    assert not any("float64" in before or "axis" in before for before, _ in changes), changes

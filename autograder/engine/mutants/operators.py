@@ -3014,6 +3014,13 @@ def _student_changes(node, parent, parents, words):
         # a half-pixel offset the convention does not have (pixel centres at integers)
         yield "half_pixel", ast.unparse(node.left) if not isinstance(node.left, ast.BinOp) \
             else f"({ast.unparse(node.left)})", ""
+    if isinstance(node, ast.Call) and _dotted(node.func).startswith(("np.", "numpy.")) and len(node.args) == 2 \
+            and not node.keywords and isinstance(node.args[0], (ast.List, ast.Tuple)) and node.args[0].elts \
+            and isinstance(node.args[1], (ast.Constant, ast.Name)) and not isinstance(getattr(node.args[1], "value", 0), str):
+        # a list closed one item early: `np.diag([sx, sy], 1)` (1 taken for the diagonal's offset) where
+        # `np.diag([sx, sy, 1])` belongs
+        items = ", ".join(ast.unparse(e) for e in [*node.args[0].elts, node.args[1]])
+        yield "bracket", f"{ast.unparse(node.func)}([{items}])", ""
     bracketed = _brackets_left_out(node)
     if bracketed is not None:
         # a factor's brackets left out: `p2 * r2 + 2 * x * x` where `p2 * (r2 + 2 * x * x)` belongs
