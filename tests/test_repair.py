@@ -4825,3 +4825,13 @@ def test_a_list_closed_one_item_early_in_a_numpy_call_takes_the_item_in():
     changes = _shown_changes(source, "bracket")
     assert ("np.diag([sx, sy], 1)", "np.diag([sx, sy, 1])") in changes, changes
     assert not any("float64" in before or "axis" in before for before, _ in changes), changes
+
+
+def test_an_angle_taken_where_the_ratio_belongs_is_made_the_ratio():
+    """`f * np.arctan2(X, Z)` for the pinhole's `f * X / Z`: the arctan2 made the ratio it is the angle of."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(X, Z, f):
+            return f * np.arctan2(X, Z)
+    """)
+    assert ("np.arctan2(X, Z)", "X / Z") in _shown_changes(source, "unwrap")

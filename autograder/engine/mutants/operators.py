@@ -734,6 +734,8 @@ def _make_own_values(node, payload):
 def _make_unwrap(node, payload):
     if payload == "method":   # depth.mean() -> depth
         return copy.deepcopy(node.func.value)
+    if payload == "ratio":   # np.arctan2(y, x) -> y / x
+        return ast.BinOp(copy.deepcopy(node.args[0]), ast.Div(), copy.deepcopy(node.args[1]))
     if payload == "third":   # cv2.addWeighted(a, 0.6, b, 0.4, 0) -> b
         return copy.deepcopy(node.args[2])
     if payload == "clamped":   # np.maximum(d, 1.0) -> d
@@ -3014,6 +3016,10 @@ def _student_changes(node, parent, parents, words):
         # a half-pixel offset the convention does not have (pixel centres at integers)
         yield "half_pixel", ast.unparse(node.left) if not isinstance(node.left, ast.BinOp) \
             else f"({ast.unparse(node.left)})", ""
+    if isinstance(node, ast.Call) and _dotted(node.func) in ("np.arctan2", "numpy.arctan2", "math.atan2") \
+            and len(node.args) == 2 and not node.keywords:
+        # an angle where the ratio belongs (`f * np.arctan2(X, Z)` for the pinhole's `f * X / Z`)
+        yield "unwrap", "ratio", ""
     if isinstance(node, ast.Call) and _dotted(node.func).startswith(("np.", "numpy.")) and len(node.args) == 2 \
             and not node.keywords and isinstance(node.args[0], (ast.List, ast.Tuple)) and node.args[0].elts \
             and isinstance(node.args[1], (ast.Constant, ast.Name)) and not isinstance(getattr(node.args[1], "value", 0), str):
