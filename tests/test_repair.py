@@ -4835,3 +4835,17 @@ def test_an_angle_taken_where_the_ratio_belongs_is_made_the_ratio():
             return f * np.arctan2(X, Z)
     """)
     assert ("np.arctan2(X, Z)", "X / Z") in _shown_changes(source, "unwrap")
+
+
+def test_twin_blocks_of_rows_added_where_they_stack_are_stacked():
+    """`A = rows_u + rows_v` of two stacked blocks: `np.vstack([rows_u, rows_v])`; a sum of twins not made by
+    stacking (`x1 + x2`) is left as it is."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(Xn, zeros, x1, x2):
+            rows_u = np.hstack([Xn, zeros])
+            rows_v = np.hstack([zeros, Xn])
+            A = rows_u + rows_v
+            return A, x1 + x2
+    """)
+    assert _shown_changes(source, "add_stacked") == [("rows_u + rows_v", "np.vstack([rows_u, rows_v])")]

@@ -82,6 +82,7 @@ OPERATORS = {
     "scale_inverse": ("invers", "divid", "multipl", "undo", "the other way"),   # H[:2, 2] /= k -> H[:2, 2] *= k
     "twin_values": ("twin", "as", "other axis", "like"),   # y_min, y_max = 0, h - 1 -> as x_min, x_max are made
     "chosen_value": ("chosen", "given", "instead of", "where"),   # z = c[2] if z_avg is None else z_avg; c[2] -> z
+    "add_stacked": ("stack", "added", "sum", "rows"),   # A = rows_u + rows_v -> np.vstack([rows_u, rows_v])
     "float_kept": ("integer", "int", "truncat", "float"),   # np.int32(pts) -> pts: fractions cut
     "derived_name": ("instead of", "where"),           # `K[0, 1] * Y` -> `K[0, 1] * yn` beside `K[0, 0] * xn`
     "function": ("function", "call"),                  # np.sin -> np.cos, np.floor -> np.ceil
@@ -1448,7 +1449,7 @@ def _make_constant(node, payload):
 
 _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
                                               "unused_name", "twin_test", "drop_epsilon", "twin_values",
-                                              "chosen_value", "middle_axis", "widen", "bracket", "perspective_warp",
+                                              "chosen_value", "add_stacked", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
                                               "divide_last", "unused", "drop_colour", "zero_based", "convert_if", "exchange", "zero_entry",
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
@@ -2798,6 +2799,14 @@ def _twin_test(node, parent, parents):
             yield "twin_test", f"{ast.unparse(node)} and {twin}", ""
 
 
+def _stacked_rows(name: str, fn) -> bool:
+    """Whether ``fn`` makes ``name`` only by stacking (`np.hstack([...])`, `np.column_stack`, `np.array([...])`)."""
+    values = [n.value for n in ast.walk(fn) if isinstance(n, ast.Assign) and len(n.targets) == 1
+              and isinstance(n.targets[0], ast.Name) and n.targets[0].id == name]
+    return bool(values) and all(isinstance(v, ast.Call) and _dotted(v.func).rsplit(".", 1)[-1] in (
+        "hstack", "vstack", "column_stack", "stack", "concatenate", "array") for v in values)
+
+
 def _never_read(fn) -> list[tuple[str, int]]:
     """(name, line) of the locals ``fn`` assigns once and never reads (read once per def)."""
     if not hasattr(fn, "_never_read"):
@@ -3016,6 +3025,12 @@ def _student_changes(node, parent, parents, words):
         # a half-pixel offset the convention does not have (pixel centres at integers)
         yield "half_pixel", ast.unparse(node.left) if not isinstance(node.left, ast.BinOp) \
             else f"({ast.unparse(node.left)})", ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add) and isinstance(node.left, ast.Name) \
+            and isinstance(node.right, ast.Name) and twin_names(node.left.id, node.right.id) \
+            and all(_stacked_rows(name, _def_of(node, parents)) for name in (node.left.id, node.right.id)):
+        # two twins' blocks of rows added where they stack (`A = rows_u + rows_v`: each point's two equations
+        # summed into one)
+        yield "add_stacked", f"np.vstack([{node.left.id}, {node.right.id}])", ""
     if isinstance(node, ast.Call) and _dotted(node.func) in ("np.arctan2", "numpy.arctan2", "math.atan2") \
             and len(node.args) == 2 and not node.keywords:
         # an angle where the ratio belongs (`f * np.arctan2(X, Z)` for the pinhole's `f * X / Z`)
