@@ -1629,13 +1629,13 @@ def _squared_names(node) -> tuple | None:
     return tuple(names)
 
 
-_MEANS = {"mean", "median", "average", "nanmean"}
+_MIDDLES = {"mean", "median", "average", "nanmean"}   # a value of the data's own middle
 
 
 def _is_a_mean(node) -> bool:
     """`pts.mean(axis=0)`, `np.mean(x)`, `np.median(...)`: a value of the data's own middle."""
-    return isinstance(node, ast.Call) and _attribute_path(node.func).rsplit(".", 1)[-1] in _MEANS or (
-        isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in _MEANS)
+    return isinstance(node, ast.Call) and _attribute_path(node.func).rsplit(".", 1)[-1] in _MIDDLES or (
+        isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in _MIDDLES)
 
 
 def _centroid_names(function) -> set[str]:
