@@ -3,7 +3,8 @@
 Prints, for four photographs and four affine maps, the mean squared Laplacian of the warped image (over the
 covered area, its border left out) as a share of bilinear's: nearest, cubic and Lanczos warps, cv2.resize with
 INTER_AREA where the map shrinks, and a 3x3 Gaussian blur after the bilinear warp. compare.DETAIL_KEPT sits
-between the smallest legitimate share and the largest blurred one.
+between the smallest legitimate share of the maps that do not shrink and the largest blurred one; maps that shrink
+(INTER_AREA keeps as little as 0.38 at a quarter) are not measured by the judges.
 
     python benchmarks/detail_kept.py
 """
@@ -23,11 +24,11 @@ from fixtures.images import photo  # noqa: E402
 
 MAPS = {"shear 0.5": [[1, 0.5, 0], [0, 1, 0]], "affine": [[0.8, 0.3, 10], [-0.2, 0.9, 40]],
         "scale 1.5": [[1.5, 0, 0], [0, 1.5, 0]], "scale 0.6": [[0.6, 0, 0], [0, 0.6, 0]],
-        "scale 0.5": [[0.5, 0, 0], [0, 0.5, 0]]}
+        "scale 0.5": [[0.5, 0, 0], [0, 0.5, 0]], "scale 0.25": [[0.25, 0, 0], [0, 0.25, 0]]}
 
 
 def main() -> int:
-    legit, blurred = [], []
+    legit, shrinking, blurred = [], [], []
     for name in ("astronaut", "coffee", "rocket", "chelsea"):
         source = photo(name, (240, 180))
         for label, M in MAPS.items():
@@ -43,10 +44,11 @@ def main() -> int:
                 canvas[:shrunk.shape[0], :shrunk.shape[1]] = shrunk
                 shares["resize area"] = detail_kept(canvas, expected, inside)
             blur = detail_kept(cv2.GaussianBlur(expected, (3, 3), 0), expected, inside)
-            legit += shares.values()
+            (shrinking if abs(np.linalg.det(M[:, :2])) < 0.75 else legit).extend(shares.values())
             blurred.append(blur)
             print(f"{name:10} {label:10} " + " ".join(f"{k} {v:.2f}" for k, v in shares.items()) + f" | blur {blur:.2f}")
-    print(f"legitimate: at least {min(legit):.2f}; blurred: at most {max(blurred):.2f}; threshold {DETAIL_KEPT}")
+    print(f"legitimate, maps that do not shrink (measured): at least {min(legit):.2f}; maps that shrink (not "
+          f"measured): at least {min(shrinking):.2f}; blurred: at most {max(blurred):.2f}; threshold {DETAIL_KEPT}")
     return 0
 
 

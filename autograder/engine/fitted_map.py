@@ -106,7 +106,7 @@ def told(fitted, asked, source) -> str:
         mine, theirs = _fixed_point(fitted), _fixed_point(asked)
         if mine is None or theirs is None:
             return f"shifted by {_pair(fitted[:, 2])} px where {_pair(asked[:, 2])} is asked"
-        said = f"warped about the point {_pair(mine)}, where the map asked turns about {_pair(theirs)}"
+        said = f"warped about the point {_pair(mine)} (the point it keeps in place), where the map asked keeps {_pair(theirs)}"
         centroid = centroid_of(source)
         if centroid is not None and np.linalg.norm(centroid - mine) <= CENTROID_NEAR:
             said += measured("; that point is the image's brightness centroid (what cv2.moments gives), where the centre "

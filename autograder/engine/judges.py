@@ -360,9 +360,10 @@ def where_points_differ(got, expected, tolerance: float, names=("x", "y")) -> st
     return f"for {which}"
 
 
-def _rows_permuted(got, expected, tolerance: float, largest: int = 2000):
+def _rows_permuted(got, expected, tolerance: float, largest: int = 400):
     """For each of ``got``'s rows the row of ``expected`` it equals (within ``tolerance``), where the rows are
-    those of ``expected`` in another order, each once; None otherwise (or for sets too large to compare)."""
+    those of ``expected`` in another order, each once; None otherwise, or for sets too large to compare pairwise
+    (400 rows: a table of 160 000 distances)."""
     if got.shape != expected.shape or got.ndim != 2 or not 2 <= len(got) <= largest \
             or not np.isfinite(got).all() or not np.isfinite(expected).all():
         return None
@@ -529,7 +530,7 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
                 "is (its centre or its corner at (0, 0)) moves an image by half a pixel at most; look for a pixel "
                 "added or lost on the way: a border added and not taken back, a shift split into a whole part and "
                 "a remainder that do not add up."), mistake=WHOLE_PIXEL_OFF)
-        detail = detail_kept(got, expected, inside)
+        detail = detail_kept(got, expected, inside) if _keeps_its_scale(M) else 1.0
         if detail < DETAIL_KEPT:
             return partial(0.5, measured(
                 f"{what}: the image content is in place but blurred: it keeps {detail:.0%} of the fine detail the warp "
@@ -600,6 +601,17 @@ def _other_map(got, source, M, dsize) -> str:
         return ""
     fitted = fitted_map.fitted_affine(got, source, dsize)
     return "" if fitted is None else fitted_map.told(fitted, M[:2], source)
+
+
+def _keeps_its_scale(M) -> bool:
+    """Whether ``M`` is affine and shrinks the area by less than a quarter (|det| >= 0.75; a shear keeps it): where
+    it shrinks, averaging interpolations (cv2.resize's INTER_AREA, legitimate for shrinking) keep less fine detail
+    than bilinear (0.38 at a quarter of the size), and the detail kept tells a blur from them no more
+    (benchmarks/detail_kept.py)."""
+    M = np.asarray(M, np.float64)
+    if M.shape == (3, 3) and not np.allclose(M[2], (0.0, 0.0, 1.0)):
+        return False
+    return abs(float(np.linalg.det(M[:2, :2]))) >= 0.75
 
 
 WHOLE_PIXEL_OFF = "the image is a whole pixel off"

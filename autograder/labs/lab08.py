@@ -2075,12 +2075,13 @@ def levels_scaled(panorama, image, offset) -> tuple[float, float] | None:
     return None if 0.9 <= low and high <= 1.1 else (low, high)
 
 
-def placed_as_is(panorama, image, offset, name: str) -> tuple[bool, str]:
+def placed_as_is(panorama, image, offset, name: str, scaled=False) -> tuple[bool, str]:
     """(whether ``image`` is only shifted and partly covered by other content, what the panorama
-    shows of it in words), from :func:`in_place` (and :func:`levels_scaled`)."""
+    shows of it in words), from :func:`in_place` (and :func:`levels_scaled`, or ``scaled``, its answer
+    where the caller has it)."""
     share, content = in_place(panorama, image, offset)
     if share < IN_PLACE_SHARE:
-        scaled = levels_scaled(panorama, image, offset)
+        scaled = levels_scaled(panorama, image, offset) if scaled is False else scaled
         if scaled:
             return False, (f"{name} is in place, only shifted, but its levels are scaled, by a factor from "
                            f"{scaled[0]:.2f} to {scaled[1]:.2f} across it where it should be 1: its geometry is "
@@ -2174,7 +2175,8 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
             t.fail(f"{what}: img2 appears unwarped in your panorama, so img1 was warped: "
                    f"{IMG2_REFERENCE}; img1 is the reference frame (only shifted), img2 the image warped "
                    "onto it by the H that maps img2's pixels onto img1's", mistake=IMG2_REFERENCE)
-        covered, shown = placed_as_is(panorama, img1, offset, "img1")
+        scaled = levels_scaled(panorama, img1, offset)   # (its levels scaled: placed rightly, and told so)
+        covered, shown = placed_as_is(panorama, img1, offset, "img1", scaled)
         if covered:
             # img1 is only shifted, but something is drawn over it: the judge stands, and says what
             judge = PanoramaJudge(scene, panorama, 0, offset)
@@ -2201,7 +2203,6 @@ def stitch_judge(t: Trial, key: str, scene, what: str, name: bool = True) -> Pan
         saturated = _saturated(panorama, (img1, img2), read)
         # (where to look is the hint's: a change of their code confirmed on these inputs takes its place;
         # an img1 in place whose levels are scaled is placed rightly, and told so)
-        scaled = levels_scaled(panorama, img1, offset)
         t.fail(f"{what}: img1 does not appear {'as it is' if scaled else 'unwarped'} in your panorama (the best "
                f"place differs from img1 by {error:.0f} grey levels; {shown})" + (f": {saturated}" if saturated else "."),
                hint="" if saturated or scaled else IMG1_SHIFTED.said(t, ['stitch']),

@@ -2759,11 +2759,7 @@ def _twin_values(node, parent, parents):
             and len(node.elts) == len(parent.targets[0].elts) >= 2):
         return
     fn = _def_of(node, parents)
-    single = {}
-    for other in ast.walk(fn):
-        if isinstance(other, ast.Assign) and len(other.targets) == 1 and isinstance(other.targets[0], ast.Name) \
-                and other.lineno < parent.lineno:
-            single.setdefault(other.targets[0].id, other.value)
+    single = {name: made[0][1] for name, made in _values_of(fn).items() if made[0][0] < parent.lineno}
     names = [t.id for t in parent.targets[0].elts]
     twins = [next((other for other in single if twin_names(name, other)), None) for name in names]
     if None in twins:
@@ -2801,8 +2797,7 @@ def _twin_test(node, parent, parents):
 
 def _stacked_rows(name: str, fn) -> bool:
     """Whether ``fn`` makes ``name`` only by stacking (`np.hstack([...])`, `np.column_stack`, `np.array([...])`)."""
-    values = [n.value for n in ast.walk(fn) if isinstance(n, ast.Assign) and len(n.targets) == 1
-              and isinstance(n.targets[0], ast.Name) and n.targets[0].id == name]
+    values = [value for _, value in _values_of(fn).get(name, [])]
     return bool(values) and all(isinstance(v, ast.Call) and _dotted(v.func).rsplit(".", 1)[-1] in (
         "hstack", "vstack", "column_stack", "stack", "concatenate", "array") for v in values)
 
@@ -2925,10 +2920,19 @@ def _calls_a_spread(fn) -> bool:
     return fn._calls_a_spread
 
 
+def _values_of(fn) -> dict:
+    """name -> the values ``fn`` assigns it alone (`n = len(src)`), with their lines, read once per def."""
+    if not hasattr(fn, "_values_of"):
+        fn._values_of = {}
+        for node in ast.walk(fn):
+            if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+                fn._values_of.setdefault(node.targets[0].id, []).append((node.lineno, node.value))
+    return fn._values_of
+
+
 def _is_a_count(name: str, fn) -> bool:
     """Whether ``fn`` assigns ``name`` only a length (`n = len(src)`, `n = S.shape[0]`)."""
-    values = [node.value for node in ast.walk(fn) if isinstance(node, ast.Assign)
-              and any(isinstance(t, ast.Name) and t.id == name for t in node.targets)]
+    values = [value for _, value in _values_of(fn).get(name, [])]
     return bool(values) and all(
         (isinstance(v, ast.Call) and _dotted(v.func) == "len")
         or (isinstance(v, ast.Subscript) and isinstance(v.value, ast.Attribute) and v.value.attr == "shape")
