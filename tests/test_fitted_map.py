@@ -41,3 +41,21 @@ def test_an_image_no_affine_map_reproduces_has_no_fitted_map(source):
     assert fitted_affine(noise, source) is None
     blurred = cv2.GaussianBlur(warp(source, cv2.getRotationMatrix2D((119.5, 89.5), 30, 1.0)), (0, 0), 4.0)
     assert fitted_affine(blurred, source) is None
+
+
+def test_the_blur_measure_leaves_out_maps_that_shrink_where_averaging_is_legitimate(source):
+    """cv2.resize with INTER_AREA (the right call for shrinking) keeps little fine detail at a quarter of the size:
+    such maps are not measured; a shear keeps the area and is."""
+    from autograder.engine.compare import DETAIL_KEPT, detail_kept
+    from autograder.engine.judges import _keeps_its_scale
+
+    quarter = np.float64([[0.25, 0, 0], [0, 0.25, 0]])
+    assert not _keeps_its_scale(quarter) and _keeps_its_scale(np.float64([[1, 0.5, 0], [0, 1, 0]]))
+    expected = warp(source, quarter)
+    inside = warp(np.full(source.shape[:2], 255, np.uint8), quarter, interpolation=cv2.INTER_NEAREST) > 0
+    shrunk = cv2.resize(source, None, fx=0.25, fy=0.25, interpolation=cv2.INTER_AREA)
+    canvas = np.zeros_like(source)
+    canvas[:shrunk.shape[0], :shrunk.shape[1]] = shrunk
+    assert detail_kept(canvas, expected, inside) > 0.3   # (measured, and not judged: below DETAIL_KEPT on some photos)
+    sheared = warp(source, np.float64([[1, 0.5, 0], [0, 1, 0]]))
+    assert detail_kept(cv2.GaussianBlur(sheared, (3, 3), 0), sheared, sheared.max(axis=2) > 0) < DETAIL_KEPT
