@@ -212,6 +212,9 @@ OPERATORS = {
     "slice_order": ("revers", "order", "slice", "last"),   # shape[::-1][:2] -> shape[:2][::-1]
     "map_term": ("mapped", "linear part", "centroid", "transform"),   # dst_mean - src_mean -> dst_mean - L @ src_mean
     "centre_translation": ("centre", "center", "translation", "-R"),   # tvec = C -> tvec = -R @ C
+    "aligned": (),            # (the student's code only) a statement made its counterpart's: see aligned.py
+    "add_step": ("missing", "step", "add"),   # (the student's code only) a counterpart's step added
+    "extra_step": ("extra", "step", "remov"),   # (the student's code only) a rebinding no counterpart has, taken out
 }
 _MOVES = {"simultaneous", "move", "indent", "dedent", "hoist"}   # changes of where statements are
 RANK = {name: index for index, name in enumerate(OPERATORS)}
@@ -1458,9 +1461,9 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
                                               "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
-                                              "translation_scaled", "exact_constant", "colour_scale")},
+                                              "translation_scaled", "exact_constant", "colour_scale", "aligned")},
          "drop_keyword": _make_drop_keyword, "method_given": _make_method_given, "neutral_argument": _make_neutral_argument, "drop_argument": _make_drop_argument, "drop_flag": _make_drop_flag, "stride": _make_stride, "simultaneous": _make_simultaneous,
-         "move": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "hoist": _make_hoist, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
+         "move": _make_move, "add_step": _make_move, "indent": _make_indent, "keep_parameter": _make_keep_parameter, "undecomposed": _make_undecomposed, "slice_order": _make_slice_order, "map_term": _make_map_term, "centre_translation": _make_centre_translation, "dedent": _make_dedent, "hoist": _make_hoist, "grey": _make_grey, "guard": _make_guard, "lower_bound": _make_lower_bound,
          "translation": _make_translation, "constant": _make_constant, "literal": _make_constant, "boolean_mask": _make_boolean_mask, "negative_index": _make_magnitude, "part": _make_part, "identity": _make_part, "first_term": _make_part, "measure_first": _make_part, "summary": _make_summary, "mirror": _make_twin_step, "chain_order": _make_chain_order, "magnitude": _make_magnitude, "carry": _make_carry, "accumulate": _make_accumulate, "fill_inf": _make_fill_inf, "jump_size": _make_jump_size, "len_axis": _make_len_axis, "negate": _make_negate, "logic": _make_logic, "from_end": _make_from_end, "frame_cross": _make_frame_cross,
          "whole_vector": _make_whole_vector, "quadrant": _make_quadrant, "swap_both": _make_swap_both,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
@@ -1472,7 +1475,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "int_division": _make_int_division, "drop_division": _make_drop_division,
          "drop_factor": _make_drop_factor, "drop_centring": _make_drop_centring,
          "drop_conversion": _make_drop_conversion, "float_kept": _make_float_kept, "other_name": _make_other_name, "derived_name": _make_other_name, "in_place": _make_in_place,
-         "drop_statement": _make_drop_statement, "reshape_order": _make_reshape_order,
+         "drop_statement": _make_drop_statement, "extra_step": _make_drop_statement, "reshape_order": _make_reshape_order,
          "inverse": _make_inverse, "stack_order": _make_stack_order, "default": _make_default,
          "single_point": _make_single_point}
 

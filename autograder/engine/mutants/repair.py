@@ -44,6 +44,7 @@ from ..checks import Trial, Verdict, fingerprint
 from ..hints import RANDOM_DRAWS
 from ..inherited import SHARED_FAILING
 from . import anchors, naming
+from .aligned import aligned_mutants
 from .helper import HelperFailed
 from .operators import (DRAWING_COLOUR_AT, _MAKE, _MOVES, _defs, _derived_names, _dotted, _entry_of_literal, _parents, _replace, mutants_of,
                         mutated_defs, runs, twin_names, unpacked_items)
@@ -59,7 +60,7 @@ _SHOWN = 70               # the longest code shown before and after a change
 # reading it never outlasts the time the repairs are given.
 MAX_NODES = 15_000
 _EXCHANGES = {"swap_operands", "swap_args", "stack_order"}   # operators that exchange two things
-_IN_WORDS = _MOVES | {"grey", "guard", "branch", "keep_parameter"}   # changes told in words (their code would be too long to show)
+_IN_WORDS = _MOVES | {"grey", "guard", "branch", "keep_parameter", "add_step"}   # changes told in words (their code would be too long to show)
 
 
 @dataclass(frozen=True)
@@ -325,7 +326,10 @@ class _Student:
         module's every function would take seconds)."""
         if function not in self._mutants:
             made = mutants_of(self.text, self.api, phrased=False, functions={function}) if function in self.api else {}
-            self._mutants[function] = made.get(function, [])
+            # (and the statements written as the reference's but for a slip, made its again: see aligned.py)
+            aligned = aligned_mutants(self.tree, _reference_tree(self.reference_source), function) \
+                if function in self.api and self.reference_source else []
+            self._mutants[function] = aligned + made.get(function, [])
         return self._mutants[function]
 
     def shared(self, where: str, function: str) -> bool:
@@ -374,8 +378,11 @@ class _Student:
                 # lines, all the reference's); the function's own keep their turns (a reshape's order
                 # changed on its own line, not compensated on the line before).
                 novel = self._novel[function] = self._novel_statements(function, shown)
+                # A statement written as the reference's but at a place or two, made its counterpart's, before all:
+                # the slip the code shows beside the statement it stands for (aligned.py).
                 self._ordered[function] = sorted(smallest, key=lambda m: (
-                    not (m.where != function and self._place_of(m) in novel), m.where != function, turn[m.key]))
+                    m.operator not in ALIGNED, not (m.where != function and self._place_of(m) in novel),
+                    m.where != function, turn[m.key]))
             return self._ordered[function]
 
     def _place_of(self, mutant):
@@ -1233,7 +1240,10 @@ class _Student:
         if mutant.key not in self.fixes and mutant.edits[0][2] in _IN_WORDS:
             self.fixes[mutant.key] = self._moved(mutant)
         if mutant.key not in self.fixes:
-            shown = _together([self.shown(edit) for edit in mutant.edits])
+            try:
+                shown = _together([self.shown(edit) for edit in mutant.edits])
+            except (SyntaxError, ValueError, RecursionError):   # (a change that cannot be written is none)
+                shown = [None]
             self.fixes[mutant.key] = None if any(each is None for each in shown) else \
                 Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
         return self.fixes[mutant.key]
@@ -1332,7 +1342,8 @@ class _Student:
                 "dedent": f"moving `{shown}` (line {line}{{inside}}) out of the {block} of line {edited.lineno}, "
                           "to just after it",
                 "hoist": f"moving `{shown}` (line {line}{{inside}}) out of the {block} of line {edited.lineno}, to "
-                         "just before it (made at each turn, the array keeps only the last turn's item)"}[operator]
+                         "just before it (made at each turn, the array keeps only the last turn's item)",
+                "add_step": f"adding the step `{shown}` right after line {line}{{inside}}"}[operator]
         return Fix(((line, text, said),), where, operator, mutant.edits)
 
     def shown(self, edit) -> tuple[int, str, str] | None:
@@ -1675,6 +1686,8 @@ def _extra_step(fix: Fix, reference_source: str, function: str) -> bool:
     it runs, never does (`T @ H` -> `H` where the reference warps by H as given): the step taken out is one
     the student added, so its removal is the fix -- not a compensation, as taking out a division the
     reference makes too would be (a division by a w the student made Z)."""
+    if fix.operator == "extra_step":
+        return True   # (a rebinding the reference's def has no counterpart of: aligned.py)
     if not reference_source or fix.operator not in REMOVALS:
         return False
     removed = Counter()
@@ -3009,9 +3022,10 @@ FIXES = 3         # the most fixes told (one per line)
 # (and an OpenCV 0/1 mask used as an index, known by its name: a slow pipeline's search reaches it first)
 SHOWN_BY_THE_CODE = {"mirror", "sibling_step", "twin_step", "boolean_mask", "derived_name", "measure_first", "identity",
                      "first_term", "own_values", "estimator", "unused_name"}
-REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "unwrap", "drop_conversion",
+REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "extra_step", "unwrap", "drop_conversion",
             "drop_mask", "drop_slice", "neutral", "drop_epsilon"}   # changes that take a step out
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
+ALIGNED = {"aligned", "add_step", "extra_step"}   # changes that make a statement its counterpart in the reference (aligned.py)
 ADDITIONS = {"sibling_step", "twin_step", "sibling_argument"}   # changes that add a twin's step beside a line
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 CONFIRMATION_CALLS = 6   # or the time of this many of the student's calls, if longer (at most half the time)

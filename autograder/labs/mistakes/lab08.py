@@ -478,7 +478,7 @@ MISTAKES = {
                 cv2.line(canvas, (int(round(x1)), int(round(y1))), (int(round(x2 + w1)), int(round(y2))),
                          (0, 255, 0), 1, cv2.LINE_AA)
             return canvas
-        """, ["a grey image, shape (150, 200), is written into a colour array", "cv2.color_gray2bgr"]),
+        """, ["`canvas[:h1, :w1] = img1` to `canvas[:h1, :w1] = _bgr(img1)`"]),   # (img1 made colour as img2 is)
     "lines not shifted by W1": ("lab08.ex3", """
         _reference_draw = draw_matches
         def draw_matches(img1, img2, pts1, pts2):
@@ -846,7 +846,7 @@ MISTAKES = {
         def stitch_many(images):
             images = np.asarray(images)
             return _reference_many(list(images))
-        """, ["`images = np.asarray(images)`"]),
+        """, ["`np.asarray(images)` to `list(images)`"]),
     "homographies chained in the wrong order": ("lab08.ext2", """
         def stitch_many(images):
             images = list(images)

@@ -1,0 +1,291 @@
+"""Changes that make a student's statement the reference's counterpart of it again.
+
+Many students write a function the way the reference does, statement for statement, and slip at one
+place: `np.diag([sx, sy], 1)` for a 3x3 scaling matrix, a canvas sized by the larger image, a step left
+out. No operator foresees every such slip, but the statement itself shows it: beside its counterpart
+(the reference's statement of the same kind in the def of the same name: the same names assigned, the
+same function called), it differs at one or two small places. Each such difference made the
+counterpart's is a change the repairs try (:mod:`.repair`) like any operator's -- run on the failing
+inputs and confirmation inputs, told only when the answers come right, and shown as the student's own
+line changed. A statement of the reference's the student's def lacks, where the statements around it
+are written alike, is a step to add; a statement with no counterpart that only rebinds a name is a
+step to take out.
+
+What it cannot reach: code of the student's own (other names, other steps: no counterpart, or one that
+differs everywhere), and differences larger than a short expression (:data:`SHOWN`): those would show
+the reference's code, not a slip of the student's.
+
+Read only, never run here: both defs are parsed trees (the student's under the grader's parse bounds).
+"""
+
+from __future__ import annotations
+
+import ast
+import builtins
+import difflib
+
+from .anchors import _key
+from .operators import Mutant, _defs, _dotted, runs
+
+SHOWN = 48          # the longest counterpart expression a change writes
+DIFFERENCES = 2     # the most places one statement may differ at and still be the counterpart's slip
+ADDED = 60          # the longest statement a change adds
+SHORT = 12          # code this short (a name, a number, `width - 1`) may stand for any other as short
+LIKENESS = 0.6      # longer code must share this much of its characters with the counterpart's (difflib's ratio)
+_HEADER_FIELDS = {ast.For: ("target", "iter"), ast.While: ("test",), ast.If: ("test",)}
+_SIMPLE = (ast.Assign, ast.AugAssign, ast.AnnAssign, ast.Return, ast.Expr)
+_BUILTINS = frozenset(dir(builtins))
+_WHOLE = object()   # a node that differs as a whole (its kind, a name, a number, an operator, a count)
+
+
+def _statements(fn: ast.FunctionDef) -> list[ast.stmt]:
+    """The def's statements in line order (compound ones too, each before its body)."""
+    return sorted((node for node in ast.walk(fn) if isinstance(node, ast.stmt) and node is not fn),
+                  key=lambda node: (node.lineno, node.col_offset))
+
+
+def _signature(statement: ast.stmt):
+    """What a statement and its counterpart share: its kind and the names it assigns, or the function
+    it calls; None for a statement no counterpart is looked for."""
+    if isinstance(statement, ast.Assign):
+        return ("=", tuple(ast.dump(t) for t in statement.targets))
+    if isinstance(statement, (ast.AugAssign, ast.AnnAssign)):
+        return ("+=", ast.dump(statement.target))
+    if isinstance(statement, ast.Return):
+        return ("return",)
+    if isinstance(statement, ast.Expr) and isinstance(statement.value, ast.Call):
+        return ("call", _dotted(statement.value.func))
+    if isinstance(statement, ast.For):
+        return ("for", ast.dump(statement.target))
+    if isinstance(statement, (ast.If, ast.While)):
+        return (type(statement).__name__,)
+    return None
+
+
+def _parts(statement: ast.stmt) -> list:
+    """The parts of a statement compared with its counterpart's (a compound one: its header)."""
+    fields = _HEADER_FIELDS.get(type(statement))
+    if fields is not None:
+        return [getattr(statement, field) for field in fields]
+    if isinstance(statement, ast.Return):
+        return [statement.value]
+    if isinstance(statement, ast.Expr):
+        return [statement.value]
+    if isinstance(statement, ast.AugAssign):
+        return [statement.target, statement.op, statement.value]
+    return [statement.value]
+
+
+def _differences(mine, theirs):
+    """The pairs (student's node, counterpart's node) of expressions at which two trees differ, or
+    :data:`_WHOLE` when they differ in a part that is no expression of its own (then the nearest
+    expression holding it differs whole)."""
+    if type(mine) is not type(theirs):
+        return _WHOLE
+    if mine is None or isinstance(mine, (str, int, float, complex, bytes, bool)):
+        return [] if mine == theirs else _WHOLE
+    if isinstance(mine, (ast.expr_context, ast.operator, ast.unaryop, ast.cmpop, ast.boolop)):
+        return []   # (equal types: the same operator)
+    if isinstance(mine, list):
+        if len(mine) != len(theirs):
+            return _WHOLE
+        found = []
+        for a, b in zip(mine, theirs):
+            inner = _differences(a, b)
+            if inner is _WHOLE:
+                if isinstance(a, ast.expr):
+                    found.append((a, b))
+                else:
+                    return _WHOLE
+            else:
+                found += inner
+        return found
+    if isinstance(mine, ast.AST):
+        found = []
+        for field in mine._fields:
+            a, b = getattr(mine, field, None), getattr(theirs, field, None)
+            inner = _differences(a, b)
+            if inner is _WHOLE:
+                if isinstance(a, ast.expr):
+                    found.append((a, b))
+                else:
+                    return _WHOLE   # (a name, a number, an operator, a keyword's name: this node whole)
+            else:
+                found += inner
+        return found
+    return [] if mine == theirs else _WHOLE
+
+
+def _statement_differences(mine: ast.stmt, theirs: ast.stmt):
+    """The places a statement differs from a counterpart at, or None where it cannot be told by
+    places (too many, too long, or the whole statement)."""
+    found = []
+    for a, b in zip(_parts(mine), _parts(theirs)):
+        inner = _differences(a, b)
+        if inner is _WHOLE:
+            if not isinstance(a, ast.expr):
+                return None
+            inner = [(a, b)]
+        found += inner
+    if not found or len(found) > DIFFERENCES:
+        return None
+    for a, b in found:
+        if not _writable(b) or not _a_slip(ast.unparse(a), ast.unparse(b)):
+            return None
+    return found
+
+
+def _writable(node: ast.expr) -> bool:
+    """Whether an expression written out alone reads back as itself (a subscript's `:, -1` does not)."""
+    written = ast.unparse(node)
+    if len(written) > SHOWN or "\n" in written:
+        return False
+    try:
+        return ast.dump(ast.parse(written, mode="eval").body) == ast.dump(node)
+    except (SyntaxError, ValueError, RecursionError):
+        return False
+
+
+def _a_slip(mine: str, theirs: str) -> bool:
+    """Whether the student's code at a place is a slip of the counterpart's there, not other code: a
+    name or number for another (both short), or most of its characters the counterpart's."""
+    if max(len(mine), len(theirs)) <= SHORT:
+        return True
+    return difflib.SequenceMatcher(None, mine, theirs, autojunk=False).ratio() >= LIKENESS
+
+
+def _counterparts(statement: ast.stmt, reference: list[ast.stmt], known: set[str]):
+    """The reference statements of the same signature, each with the places they differ at, nearest first
+    (only those whose new code reads names ``known`` to the student's code at that statement)."""
+    signature = _signature(statement)
+    if signature is None:
+        return []
+    found = []
+    for model in reference:
+        if _signature(model) != signature:
+            continue
+        places = _statement_differences(statement, model)
+        if places and all(_reads(b) <= known for _, b in places):
+            found.append((sum(len(ast.unparse(b)) + len(ast.unparse(a)) for a, b in places), model, places))
+    return [(model, places) for _, model, places in sorted(found, key=lambda item: item[0])]
+
+
+def _reads(node) -> set[str]:
+    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+
+
+def _ordinals(fn: ast.FunctionDef) -> dict[int, int]:
+    return {id(node): ordinal for ordinal, node in enumerate(ast.walk(fn))}
+
+
+def _rebinds(statement: ast.stmt, earlier: set[str]) -> bool:
+    """Whether a statement only binds again names bound above it (`frame = cv2.flip(frame, 1)`), so
+    the code still runs without it."""
+    if isinstance(statement, ast.AugAssign):
+        return True
+    if isinstance(statement, ast.Assign):
+        names = [t.id for t in statement.targets if isinstance(t, ast.Name)]
+        return len(names) == len(statement.targets) and all(name in earlier for name in names)
+    return False
+
+
+def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outside: frozenset = frozenset()) -> list[tuple]:
+    """``(operator, ((ordinal, payload), ...))`` for each change that makes one statement of ``student``
+    its counterpart in ``reference``: "aligned" (expressions written as the counterpart's, payload the
+    new code), "add_step" (a statement added after the one at the ordinal: (None, text, line, "after")),
+    "extra_step" (a rebinding with no counterpart taken out). ``outside``: the names the student's module
+    binds at its top level (and the builtins), which a counterpart's code may read too."""
+    mine, theirs = _statements(student), _statements(reference)
+    written = {_key(s) for s in theirs}
+    ordinals = _ordinals(student)
+    changes, seen = [], set()
+    parameters = {a.arg for a in ast.walk(student.args) if isinstance(a, ast.arg)}
+    bound: set[str] = set(parameters)
+    for statement in mine:
+        own = _key(statement) not in written
+        if own:
+            known = bound | outside | _stored_in(statement)   # (a loop's own target, a comprehension's names)
+            counterparts = _counterparts(statement, theirs, known)
+            for model, places in counterparts[:2]:
+                edits = tuple((ordinals[id(a)], ast.unparse(b)) for a, b in places)
+                if edits not in seen:
+                    seen.add(edits)
+                    changes.append(("aligned", edits))
+            if not counterparts and isinstance(statement, _SIMPLE) and _rebinds(statement, bound) \
+                    and _signature(statement) not in {_signature(s) for s in theirs}:
+                changes.append(("extra_step", ((ordinals[id(statement)], None),)))
+        header = [statement.target] if isinstance(statement, ast.For) else [statement] if isinstance(statement, _SIMPLE) else []
+        bound |= {n.id for part in header for n in ast.walk(part) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    if not _alike(mine, written):
+        # (steps added or taken out only where the def is the reference's for the most part: in code of the
+        # student's own, a statement the reference lacks is no extra step)
+        return [change for change in changes if change[0] == "aligned"]
+    return changes + _missing_steps(student, reference, mine, theirs, ordinals)
+
+
+def _stored_in(statement: ast.stmt) -> set[str]:
+    return {n.id for n in ast.walk(statement) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+
+
+def _alike(mine: list[ast.stmt], written: set[str]) -> bool:
+    """Whether at least half the student's statements are written as the reference writes them."""
+    return bool(mine) and 2 * sum(_key(s) in written for s in mine) >= len(mine)
+
+
+def _missing_steps(student, reference, mine, theirs, ordinals) -> list[tuple]:
+    """A simple statement of the reference the student's def writes nowhere (nor any of its kind), right
+    after one the student writes word for word: the step added after the student's statement."""
+    mine_by_key: dict[str, list[ast.stmt]] = {}
+    for statement in mine:
+        mine_by_key.setdefault(_key(statement), []).append(statement)
+    written = {_key(s) for s in theirs}
+    signatures = {_signature(s) for s in mine if _key(s) not in written}   # (of the student's own statements)
+    found = []
+    for block in _blocks(reference):
+        for before, step in zip(block, block[1:]):
+            if not isinstance(step, (ast.Assign, ast.AugAssign, ast.Expr)) or _key(step) in mine_by_key:
+                continue
+            if _signature(step) in signatures:
+                continue   # (the student computes it otherwise: a counterpart to align, not a step to add)
+            text = " ".join(ast.unparse(step).split())
+            holders = mine_by_key.get(_key(before), [])
+            if len(text) > ADDED or len(holders) != 1 or not isinstance(holders[0], _SIMPLE):
+                continue
+            found.append(("add_step", ((ordinals[id(holders[0])], (None, text, holders[0].lineno, "after")),)))
+    return found
+
+
+def _blocks(fn: ast.FunctionDef) -> list[list[ast.stmt]]:
+    return [getattr(node, field) for node in ast.walk(fn) for field in ("body", "orelse")
+            if isinstance(getattr(node, field, None), list) and getattr(node, field)
+            and isinstance(getattr(node, field)[0], ast.stmt)]
+
+
+def aligned_mutants(student_tree: ast.Module, reference_tree: ast.Module, function: str) -> list[Mutant]:
+    """The aligned changes (:func:`aligned_changes`) of every def ``function`` runs in the student's module
+    that the reference defines too, as mutants of the student's code (repairs tell them by their code)."""
+    student_defs, reference_defs = _defs(student_tree), _defs(reference_tree)
+    outside = frozenset(_module_names(student_tree)) | _BUILTINS
+    made = []
+    for where in runs(student_defs, function):
+        if where not in reference_defs:
+            continue
+        nodes = list(ast.walk(student_defs[where]))
+        for operator, edits in aligned_changes(student_defs[where], reference_defs[where], outside):
+            full = tuple((where, ordinal, operator, payload) for ordinal, payload in edits)
+            line = getattr(nodes[edits[0][0]], "lineno", student_defs[where].lineno)
+            made.append(Mutant(operator, function, where, line, full, f"in `{function}`, ", f"in `{function}`, "))
+    return made
+
+
+def _module_names(tree: ast.Module) -> set[str]:
+    """The names a module binds at its top level (imports, defs, classes, assignments)."""
+    names = set()
+    for node in tree.body:
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            names |= {alias.asname or alias.name.split(".")[0] for alias in node.names}
+        elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        else:
+            names |= {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    return names

@@ -1,0 +1,106 @@
+"""Statements written as the reference's but for a slip, made their counterparts again (aligned.py)."""
+
+import ast
+from pathlib import Path
+
+import pytest
+
+from autograder.engine.mutants.aligned import SHOWN, aligned_changes, aligned_mutants
+from autograder.engine.mutants.operators import _defs, apply_edits
+
+REFERENCE = '''
+import numpy as np
+
+def project(points, K):
+    homogeneous = np.hstack([points, np.ones((len(points), 1))])
+    mapped = homogeneous @ K.T
+    mapped = mapped / mapped[:, 2:3]
+    return mapped[:, :2]
+'''
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _changed(student: str, function: str = "project") -> list[str]:
+    """The student's def after each aligned change, as code."""
+    tree, reference = ast.parse(student), ast.parse(REFERENCE)
+    return [ast.unparse(_defs(ast.parse(apply_edits(student, m.edits)))[function])
+            for m in aligned_mutants(tree, reference, function)]
+
+
+def _reference_def(function: str = "project") -> str:
+    return ast.unparse(_defs(ast.parse(REFERENCE))[function])
+
+
+def test_one_expression_slip_is_made_the_counterparts():
+    student = REFERENCE.replace("homogeneous @ K.T", "homogeneous @ K")
+    assert _reference_def() in _changed(student)
+
+
+def test_a_slip_at_two_places_of_one_statement_is_one_change():
+    student = REFERENCE.replace("mapped / mapped[:, 2:3]", "mapped / mapped[:, 1:2]").replace("mapped[:, :2]", "mapped[:, :1]")
+    changed = _changed(student)
+    assert _reference_def() not in changed   # (two statements: two changes, each tried alone)
+    student = REFERENCE.replace("np.ones((len(points), 1))", "np.zeros((len(points), 2))")
+    assert _reference_def() in _changed(student)
+
+
+def test_a_missing_step_is_added_after_the_statement_written_alike():
+    student = REFERENCE.replace("    mapped = mapped / mapped[:, 2:3]\n", "")
+    tree, reference = ast.parse(student), ast.parse(REFERENCE)
+    added = [m for m in aligned_mutants(tree, reference, "project") if m.operator == "add_step"]
+    assert len(added) == 1
+    made = apply_edits(student, added[0].edits)
+    assert "mapped = mapped / mapped[:, 2:3]" in made
+
+
+def test_an_extra_rebinding_is_taken_out():
+    student = REFERENCE.replace("    return mapped[:, :2]", "    mapped = np.round(mapped)\n    return mapped[:, :2]")
+    tree, reference = ast.parse(student), ast.parse(REFERENCE)
+    # (the extra `mapped = np.round(mapped)` has counterparts of its signature -- `mapped = ...` -- that differ
+    # everywhere: made one of them it would show the reference's line, so it is not; nor is it a step to drop)
+    extra = [m for m in aligned_mutants(tree, reference, "project") if m.operator == "extra_step"]
+    assert extra == []
+    student = REFERENCE.replace("    return mapped[:, :2]", "    points = points[::-1]\n    return mapped[:, :2]")
+    tree = ast.parse(student)
+    extra = [m for m in aligned_mutants(tree, reference, "project") if m.operator == "extra_step"]
+    assert len(extra) == 1 and "points[::-1]" not in apply_edits(student, extra[0].edits)
+
+
+def test_code_of_ones_own_has_no_counterparts_to_align():
+    student = '''
+import numpy as np
+
+def project(points, K):
+    out = []
+    for x, y, z in points:
+        u = K[0, 0] * x / z + K[0, 2]
+        v = K[1, 1] * y / z + K[1, 2]
+        out.append((u, v))
+    return np.array(out)
+'''
+    assert _changed(student) == []
+
+
+def test_a_long_counterpart_is_not_written_out():
+    reference = "def f(a, b):\n    return np.concatenate([a * 2.0, b * 3.0, a + b, a - b, np.ones_like(a)], axis=0)\n"
+    student = "def f(a, b):\n    return np.stack([a, b])\n"
+    assert len("np.concatenate([a * 2.0, b * 3.0, a + b, a - b, np.ones_like(a)], axis=0)") > SHOWN
+    assert aligned_changes(_defs(ast.parse(student))["f"], _defs(ast.parse(reference))["f"]) == []
+
+
+@pytest.mark.parametrize("lab", sorted(p.stem for p in (ROOT / "reference_solutions").glob("lab*.py")))
+def test_a_reference_beside_itself_has_nothing_to_align(lab):
+    tree = ast.parse((ROOT / "reference_solutions" / f"{lab}.py").read_text())
+    for function in _defs(tree):
+        assert aligned_mutants(tree, tree, function) == []
+
+
+def test_a_blind_slip_in_a_lab_is_mended_by_its_counterpart():
+    source = (ROOT / "reference_solutions" / "lab10_camera2.py").read_text()
+    fn = _defs(ast.parse(source))["camera_matrix_dlt"]
+    stacked = [n for n in ast.walk(fn) if isinstance(n, ast.Call) and ast.unparse(n.func) == "np.vstack"]
+    assert stacked, "the reference stacks its rows"
+    student = source.replace(ast.unparse(stacked[0]), ast.unparse(stacked[0]).replace("np.vstack", "np.hstack"), 1)
+    made = [apply_edits(student, m.edits) for m in aligned_mutants(ast.parse(student), ast.parse(source), "camera_matrix_dlt")]
+    assert ast.unparse(fn) in [ast.unparse(_defs(ast.parse(text))["camera_matrix_dlt"]) for text in made]
