@@ -104,3 +104,17 @@ def test_a_blind_slip_in_a_lab_is_mended_by_its_counterpart():
     student = source.replace(ast.unparse(stacked[0]), ast.unparse(stacked[0]).replace("np.vstack", "np.hstack"), 1)
     made = [apply_edits(student, m.edits) for m in aligned_mutants(ast.parse(student), ast.parse(source), "camera_matrix_dlt")]
     assert ast.unparse(fn) in [ast.unparse(_defs(ast.parse(text))["camera_matrix_dlt"]) for text in made]
+
+
+def test_a_def_written_in_names_of_ones_own_is_aligned_through_them():
+    student = '''
+import numpy as np
+
+def project(points, K):
+    h = np.hstack([points, np.ones((len(points), 1))])
+    m = h @ K
+    m = m / m[:, 2:3]
+    return m[:, :2]
+'''
+    fixed = student.replace("h @ K", "h @ K.T")
+    assert ast.unparse(_defs(ast.parse(fixed))["project"]) in _changed(student)

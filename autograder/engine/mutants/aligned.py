@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import ast
 import builtins
+import copy
 import difflib
 
 from .anchors import _key
@@ -195,7 +196,7 @@ def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outsid
     new code), "add_step" (a statement added after the one at the ordinal: (None, text, line, "after")),
     "extra_step" (a rebinding with no counterpart taken out). ``outside``: the names the student's module
     binds at its top level (and the builtins), which a counterpart's code may read too."""
-    mine, theirs = _statements(student), _statements(reference)
+    mine, theirs = _statements(student), _statements(_renamed(reference, _names_map(student, reference)))
     written = {_key(s) for s in theirs}
     ordinals = _ordinals(student)
     changes, seen = [], set()
@@ -230,6 +231,66 @@ def _stored_in(statement: ast.stmt) -> set[str]:
 def _alike(mine: list[ast.stmt], written: set[str]) -> bool:
     """Whether at least half the student's statements are written as the reference writes them."""
     return bool(mine) and 2 * sum(_key(s) in written for s in mine) >= len(mine)
+
+
+def _target_names(statement: ast.stmt) -> list[str] | None:
+    """The names an assignment or a loop binds, in order (None where it binds anything else too)."""
+    targets = [statement.target] if isinstance(statement, ast.For) else statement.targets
+    names = []
+    for target in targets:
+        for node in (target.elts if isinstance(target, ast.Tuple) else [target]):
+            if not isinstance(node, ast.Name):
+                return None
+            names.append(node.id)
+    return names
+
+
+def _names_map(student: ast.FunctionDef, reference: ast.FunctionDef) -> dict[str, str]:
+    """The reference's local names and the student's names for the same values: an assignment (or a loop)
+    of the reference whose value, in the student's names found so far, the student's def computes too --
+    word for word, or but for one slip (:func:`_a_slip`) -- binds its names to the student's there, in
+    order (`A = np.vstack(...)` and `M = np.vstack(...)`: A is M). Parameters keep theirs (the API's)."""
+    mapping: dict[str, str] = {}
+    images: set[str] = set()
+    mine = [s for s in _statements(student) if isinstance(s, (ast.Assign, ast.For)) and _target_names(s)]
+    used: set[int] = set()
+    for model in _statements(reference):
+        if not isinstance(model, (ast.Assign, ast.For)):
+            continue
+        names = _target_names(model)
+        if not names or all(name in mapping for name in names):
+            continue
+        value = _renamed(model.iter if isinstance(model, ast.For) else model.value, mapping)
+        near = None
+        for index, statement in enumerate(mine):
+            if index in used or type(statement) is not type(model) or len(_target_names(statement)) != len(names):
+                continue
+            theirs = statement.iter if isinstance(statement, ast.For) else statement.value
+            places = _differences(theirs, value)
+            if places == []:
+                near = index
+                break
+            if near is None and places is not _WHOLE and len(places) == 1 \
+                    and _a_slip(ast.unparse(places[0][0]), ast.unparse(places[0][1])):
+                near = index
+        if near is None:
+            continue
+        used.add(near)
+        for name, own in zip(names, _target_names(mine[near])):
+            if name not in mapping and own not in images:
+                mapping[name] = own
+                images.add(own)
+    return {name: own for name, own in mapping.items() if name != own}
+
+
+def _renamed(node, mapping: dict[str, str]):
+    """A copy of ``node`` with the names ``mapping`` holds written as their images."""
+    node = copy.deepcopy(node)
+    if mapping:
+        for inner in ast.walk(node):
+            if isinstance(inner, ast.Name) and inner.id in mapping:
+                inner.id = mapping[inner.id]
+    return node
 
 
 def _missing_steps(student, reference, mine, theirs, ordinals) -> list[tuple]:
