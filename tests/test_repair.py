@@ -23,14 +23,14 @@ from conftest import check_results, edited_reference, failing_messages, mutant, 
 SMALL = Limits(call_timeout=5.0)
 
 
-# ------------------------------------------------------------------ the sandbox's variants
-@pytest.fixture
-
 def _told_in(told: str, message: str) -> bool:
     """Whether a message tells one of the ways ``told`` lists (" || " between them): the operator's change,
     or the same place made as the reference writes it (aligned.py)."""
     return any(way in message for way in told.split(" || "))
 
+
+# ------------------------------------------------------------------ the sandbox's variants
+@pytest.fixture
 def box(tmp_path):
     folder = submission_from_source(tmp_path, "student", """
         import numpy as np

@@ -25,6 +25,7 @@ import builtins
 import copy
 import difflib
 
+from ...loading.parsing import parse
 from .anchors import _key
 from .operators import Mutant, _defs, _dotted, runs
 
@@ -142,7 +143,7 @@ def _writable(node: ast.expr) -> bool:
     if len(written) > SHOWN or "\n" in written:
         return False
     try:
-        return ast.dump(ast.parse(written, mode="eval").body) == ast.dump(node)
+        return ast.dump(parse(written, mode="eval").body) == ast.dump(node)
     except (SyntaxError, ValueError, RecursionError):
         return False
 
