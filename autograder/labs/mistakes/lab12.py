@@ -90,7 +90,7 @@ MISTAKES = {
             depth = np.zeros_like(d)
             np.divide(float(f) * float(baseline), d, out=depth, where=valid)
             return depth
-        """, ["`d > 0`"]),
+        """, ["`np.nanmin(d)` to `0`"]),
     # the blind set 1204c's 12/07: np.digitize's bins counted from 1 (on gray_code_patterns(16, 4) the same
     # patterns as columns numbered from 1: told apart on the probe)
     # the blind set 1204e's 12/06: the patterns' list started with an all-white one (a real scanner's reference)
@@ -100,7 +100,8 @@ MISTAKES = {
     "structured light in coordinates about the centre, never made columns again": ("lab12.ex6", reference_def_with(
         "lab12_stereo", "simulate_structured_light", "u = np.broadcast_to(np.arange(width, dtype=np.float64), depth.shape)",
         "cx = (width - 1) / 2.0\nu = np.broadcast_to(np.arange(width, dtype=np.float64) - cx, depth.shape)"),
-        ["the mistake is more likely where the centring is undone"]),
+        # (the reference's line has no centring: the centring is told as the line's departure from it)
+        ["`np.arange(width, dtype=np.float64) - cx` to `np.arange(width, dtype=np.float64)`"]),
     "block matching's costs without a partner marked NaN": ("lab12.ex4", """
         def _ssd_volume(left, right, max_disparity, block_size):
             height, width = left.shape
