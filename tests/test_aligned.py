@@ -118,3 +118,9 @@ def project(points, K):
 '''
     fixed = student.replace("h @ K", "h @ K.T")
     assert ast.unparse(_defs(ast.parse(fixed))["project"]) in _changed(student)
+
+
+def test_a_def_far_longer_than_any_labs_is_not_read():
+    body = "".join(f"    x{i} = points * {i}\n" for i in range(400))
+    student = f"import numpy as np\n\ndef project(points, K):\n{body}    return x1\n"
+    assert aligned_mutants(ast.parse(student), ast.parse(REFERENCE), "project") == []

@@ -32,6 +32,7 @@ from .operators import Mutant, _defs, _dotted, runs
 SHOWN = 48          # the longest counterpart expression a change writes
 DIFFERENCES = 2     # the most places one statement may differ at and still be the counterpart's slip
 ADDED = 60          # the longest statement a change adds
+MAX_STATEMENTS = 300  # a def with more statements (the labs' longest has about 40) is not aligned
 SHORT = 12          # code this short (a name, a number, `width - 1`) may stand for any other as short
 LIKENESS = 0.6      # longer code must share this much of its characters with the counterpart's (difflib's ratio)
 _HEADER_FIELDS = {ast.For: ("target", "iter"), ast.While: ("test",), ast.If: ("test",)}
@@ -197,6 +198,8 @@ def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outsid
     new code), "add_step" (a statement added after the one at the ordinal: (None, text, line, "after")),
     "extra_step" (a rebinding with no counterpart taken out). ``outside``: the names the student's module
     binds at its top level (and the builtins), which a counterpart's code may read too."""
+    if sum(1 for node in ast.walk(student) if isinstance(node, ast.stmt)) > MAX_STATEMENTS:
+        return []   # (each statement is compared with the reference's: a def far longer than any lab's is not read)
     mine, theirs = _statements(student), _statements(_renamed(reference, _names_map(student, reference)))
     written = {_key(s) for s in theirs}
     ordinals = _ordinals(student)
