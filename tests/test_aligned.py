@@ -121,6 +121,8 @@ def project(points, K):
 
 
 def test_a_def_far_longer_than_any_labs_is_not_read():
-    body = "".join(f"    x{i} = points * {i}\n" for i in range(400))
-    student = f"import numpy as np\n\ndef project(points, K):\n{body}    return x1\n"
-    assert aligned_mutants(ast.parse(student), ast.parse(REFERENCE), "project") == []
+    slip = REFERENCE.replace("homogeneous @ K.T", "homogeneous @ K")
+    assert aligned_mutants(ast.parse(slip), ast.parse(REFERENCE), "project")   # (read: the slip has its counterpart)
+    filler = "".join(f"    x{i} = points * {i}\n" for i in range(400))
+    long = slip.replace("    return mapped[:, :2]", filler + "    return mapped[:, :2]")
+    assert aligned_mutants(ast.parse(long), ast.parse(REFERENCE), "project") == []
