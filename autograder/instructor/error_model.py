@@ -14,6 +14,9 @@ the mutant's edits) and its exercise is graded. A mutant is
   **named as another** when the error model names another mutant (an equivalent one, or a wrong
   name: read them), **named by hand** when only a hand-written diagnosis names it.
 
+The counterparts (:mod:`autograder.engine.mutants.aligned`: a line made the reference's again) are left
+out while measuring: a mutant is the reference but for one edit, which they would repair every time.
+
 Grading every mutant of a lab takes long (hundreds of gradings): a sample is graded,
 spread over the operators (``--mutants N``, the same sample every run).
 """
@@ -28,6 +31,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
+from ..engine.mutants import aligned
 from ..engine.mutants.naming import model_for, reference_module
 from ..engine.mutants.operators import Mutant, apply_edits
 from ..engine.registry import Lab
@@ -111,8 +115,12 @@ def measure_error_model(lab: Lab, count: int = 30,
         folder = Path(tempfile.mkdtemp(prefix="verify-mutant-"))
         try:
             (folder / f"{lab.module}.py").write_text(apply_edits(model.source, mutant.edits), encoding="utf-8")
+            # (a mutant is the reference but for one edit: its counterpart statement would repair every one,
+            # which measures nothing of the operators -- the counterparts are left out here)
+            aligned.ENABLED = False
             result = grade(folder, [exercise], pictures="none")
         finally:
+            aligned.ENABLED = True
             shutil.rmtree(folder, ignore_errors=True)
         checks = [c for e in result.exercises if e.id == exercise for c in e.checks if c.max_score > 0]
         report.outcomes.append(classify(mutant, exercise, checks))

@@ -32,6 +32,8 @@ from .operators import Mutant, _defs, _dotted, runs
 SHOWN = 48          # the longest counterpart expression a change writes
 DIFFERENCES = 2     # the most places one statement may differ at and still be the counterpart's slip
 ADDED = 60          # the longest statement a change adds
+ENABLED = True      # off while `autograder verify --error-model` measures the operators (a mutant of the
+                    # reference is one edit of it: its counterpart would name every one, saying nothing)
 MAX_STATEMENTS = 300  # a def with more statements (the labs' longest has about 40) is not aligned
 SHORT = 12          # code this short (a name, a number, `width - 1`) may stand for any other as short
 LIKENESS = 0.6      # longer code must share this much of its characters with the counterpart's (difflib's ratio)
@@ -329,6 +331,8 @@ def _blocks(fn: ast.FunctionDef) -> list[list[ast.stmt]]:
 def aligned_mutants(student_tree: ast.Module, reference_tree: ast.Module, function: str) -> list[Mutant]:
     """The aligned changes (:func:`aligned_changes`) of every def ``function`` runs in the student's module
     that the reference defines too, as mutants of the student's code (repairs tell them by their code)."""
+    if not ENABLED:
+        return []
     student_defs, reference_defs = _defs(student_tree), _defs(reference_tree)
     outside = frozenset(_module_names(student_tree)) | _BUILTINS
     made = []
