@@ -126,3 +126,8 @@ def test_a_def_far_longer_than_any_labs_is_not_read():
     filler = "".join(f"    x{i} = points * {i}\n" for i in range(400))
     long = slip.replace("    return mapped[:, :2]", filler + "    return mapped[:, :2]")
     assert aligned_mutants(ast.parse(long), ast.parse(REFERENCE), "project") == []
+
+
+def test_a_step_wrapped_round_the_counterparts_value_is_taken_off():
+    student = REFERENCE.replace("homogeneous @ K.T", "np.flip(homogeneous, axis=1) @ K.T")
+    assert _reference_def() in _changed(student)

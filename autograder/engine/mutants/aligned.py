@@ -135,7 +135,7 @@ def _statement_differences(mine: ast.stmt, theirs: ast.stmt):
     if not found or len(found) > DIFFERENCES:
         return None
     for a, b in found:
-        if not _writable(b) or not _a_slip(ast.unparse(a), ast.unparse(b)):
+        if not _writable(b) or not _a_slip(a, b):
             return None
     return found
 
@@ -151,12 +151,21 @@ def _writable(node: ast.expr) -> bool:
         return False
 
 
-def _a_slip(mine: str, theirs: str) -> bool:
+def _a_slip(mine: ast.expr, theirs: ast.expr) -> bool:
     """Whether the student's code at a place is a slip of the counterpart's there, not other code: a
-    name or number for another (both short), or most of its characters the counterpart's."""
-    if max(len(mine), len(theirs)) <= SHORT:
+    name or number for another (both short), one holding the other whole (a step wrapped round it or
+    left out: `cv2.flip(frame, 1)` for `frame`, `img1` for `_bgr(img1)`), or most of its characters
+    the counterpart's."""
+    mine_text, theirs_text = ast.unparse(mine), ast.unparse(theirs)
+    if max(len(mine_text), len(theirs_text)) <= SHORT or _holds(mine, theirs) or _holds(theirs, mine):
         return True
-    return difflib.SequenceMatcher(None, mine, theirs, autojunk=False).ratio() >= LIKENESS
+    return difflib.SequenceMatcher(None, mine_text, theirs_text, autojunk=False).ratio() >= LIKENESS
+
+
+def _holds(outer: ast.expr, inner: ast.expr) -> bool:
+    """Whether ``inner`` is written whole inside ``outer``."""
+    wanted = ast.dump(inner)
+    return any(ast.dump(node) == wanted for node in ast.walk(outer) if type(node) is type(inner))
 
 
 def _counterparts(statement: ast.stmt, reference: list[ast.stmt], known: set[str]):
@@ -277,7 +286,7 @@ def _names_map(student: ast.FunctionDef, reference: ast.FunctionDef) -> dict[str
                 near = index
                 break
             if near is None and places is not _WHOLE and len(places) == 1 \
-                    and _a_slip(ast.unparse(places[0][0]), ast.unparse(places[0][1])):
+                    and _a_slip(places[0][0], places[0][1]):
                 near = index
         if near is None:
             continue
