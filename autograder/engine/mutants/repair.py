@@ -327,8 +327,11 @@ class _Student:
         if function not in self._mutants:
             made = mutants_of(self.text, self.api, phrased=False, functions={function}) if function in self.api else {}
             # (and the statements written as the reference's but for a slip, made its again: see aligned.py)
-            aligned = aligned_mutants(self.tree, _reference_tree(self.reference_source), function) \
-                if function in self.api and self.reference_source else []
+            try:
+                aligned = aligned_mutants(self.tree, _reference_tree(self.reference_source), function) \
+                    if function in self.api and self.reference_source else []
+            except RecursionError:   # (code nested past what comparing it statement by statement can follow)
+                aligned = []
             self._mutants[function] = aligned + made.get(function, [])
         return self._mutants[function]
 
