@@ -11,7 +11,9 @@ line changed. A statement of the reference's the student's def lacks, where the 
 are written alike, is a step to add; a statement with no counterpart that only rebinds a name is a
 step to take out.
 
-What it cannot reach: code of the student's own (other names, other steps: no counterpart, or one that
+Names of the student's own are followed (:func:`_names_map`: `m = h @ K` stands for `mapped =
+homogeneous @ K.T`), and a counterpart is written in them. What it cannot reach: code of the student's
+own structure (a loop where the reference is vectorised, other steps: no counterpart, or one that
 differs everywhere), and differences larger than a short expression (:data:`SHOWN`): those would show
 the reference's code, not a slip of the student's.
 
