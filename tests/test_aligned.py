@@ -131,3 +131,21 @@ def test_a_def_far_longer_than_any_labs_is_not_read():
 def test_a_step_wrapped_round_the_counterparts_value_is_taken_off():
     student = REFERENCE.replace("homogeneous @ K.T", "np.flip(homogeneous, axis=1) @ K.T")
     assert _reference_def() in _changed(student)
+
+
+def test_student_code_longer_than_a_slip_at_a_place_is_other_code():
+    # (a wrapper round the counterpart's value is a slip; thousands of characters round it are code of one's own,
+    # and are not compared character by character, which would cost the square of their length)
+    wrapped = "(homogeneous + 0.0 * np.sum([" + ", ".join(["points"] * 400) + "], axis=0))"
+    student = REFERENCE.replace("homogeneous @ K.T", f"{wrapped} @ K.T")
+    assert _changed(student) == []
+    assert _reference_def() in _changed(REFERENCE.replace("homogeneous @ K.T", "(homogeneous + 0.0 * points) @ K.T"))
+
+
+def test_counterparts_are_left_out_while_the_operators_are_measured():
+    from autograder.engine.mutants import aligned
+
+    slip = REFERENCE.replace("homogeneous @ K.T", "homogeneous @ K")
+    with aligned.left_out():
+        assert aligned_mutants(ast.parse(slip), ast.parse(REFERENCE), "project") == []
+    assert aligned_mutants(ast.parse(slip), ast.parse(REFERENCE), "project")   # (and back after the block)

@@ -115,12 +115,9 @@ def measure_error_model(lab: Lab, count: int = 30,
         folder = Path(tempfile.mkdtemp(prefix="verify-mutant-"))
         try:
             (folder / f"{lab.module}.py").write_text(apply_edits(model.source, mutant.edits), encoding="utf-8")
-            # (a mutant is the reference but for one edit: its counterpart statement would repair every one,
-            # which measures nothing of the operators -- the counterparts are left out here)
-            aligned.ENABLED = False
-            result = grade(folder, [exercise], pictures="none")
+            with aligned.left_out():   # (each mutant is one edit of the reference: see aligned.left_out)
+                result = grade(folder, [exercise], pictures="none")
         finally:
-            aligned.ENABLED = True
             shutil.rmtree(folder, ignore_errors=True)
         checks = [c for e in result.exercises if e.id == exercise for c in e.checks if c.max_score > 0]
         report.outcomes.append(classify(mutant, exercise, checks))

@@ -24,25 +24,37 @@ from __future__ import annotations
 
 import ast
 import builtins
+import contextlib
 import copy
 import difflib
 
 from ...loading.parsing import parse
-from .anchors import _key
+from .anchors import _key, _names
 from .operators import Mutant, _defs, _dotted, runs
 
 SHOWN = 48          # the longest counterpart expression a change writes
 DIFFERENCES = 2     # the most places one statement may differ at and still be the counterpart's slip
 ADDED = 60          # the longest statement a change adds
-ENABLED = True      # off while `autograder verify --error-model` measures the operators (a mutant of the
-                    # reference is one edit of it: its counterpart would name every one, saying nothing)
+_ENABLED = [True]   # off within left_out() (see there)
 MAX_STATEMENTS = 300  # a def with more statements (the labs' longest has about 40) is not aligned
 SHORT = 12          # code this short (a name, a number, `width - 1`) may stand for any other as short
+LONGEST_SLIP = 4 * SHOWN   # the student's code at a place longer than this is no slip (and is not compared)
 LIKENESS = 0.6      # longer code must share this much of its characters with the counterpart's (difflib's ratio)
 _HEADER_FIELDS = {ast.For: ("target", "iter"), ast.While: ("test",), ast.If: ("test",)}
 _SIMPLE = (ast.Assign, ast.AugAssign, ast.AnnAssign, ast.Return, ast.Expr)
 _BUILTINS = frozenset(dir(builtins))
 _WHOLE = object()   # a node that differs as a whole (its kind, a name, a number, an operator, a count)
+
+
+@contextlib.contextmanager
+def left_out():
+    """No counterparts within the block: `autograder verify --error-model` measures the operators on mutants
+    of the reference, each one edit of it, which its counterpart statement would repair every time."""
+    before, _ENABLED[0] = _ENABLED[0], False
+    try:
+        yield
+    finally:
+        _ENABLED[0] = before
 
 
 def _statements(fn: ast.FunctionDef) -> list[ast.stmt]:
@@ -159,6 +171,8 @@ def _a_slip(mine: ast.expr, theirs: ast.expr) -> bool:
     left out: `cv2.flip(frame, 1)` for `frame`, `img1` for `_bgr(img1)`), or most of its characters
     the counterpart's."""
     mine_text, theirs_text = ast.unparse(mine), ast.unparse(theirs)
+    if len(mine_text) > LONGEST_SLIP:
+        return False   # (the student's side is theirs, of any length: longer code than a slip is other code)
     if max(len(mine_text), len(theirs_text)) <= SHORT or _holds(mine, theirs) or _holds(theirs, mine):
         return True
     return difflib.SequenceMatcher(None, mine_text, theirs_text, autojunk=False).ratio() >= LIKENESS
@@ -181,13 +195,9 @@ def _counterparts(statement: ast.stmt, reference: list[ast.stmt], known: set[str
         if _signature(model) != signature:
             continue
         places = _statement_differences(statement, model)
-        if places and all(_reads(b) <= known for _, b in places):
+        if places and all(_names([b], ast.Load) <= known for _, b in places):
             found.append((sum(len(ast.unparse(b)) + len(ast.unparse(a)) for a, b in places), model, places))
     return [(model, places) for _, model, places in sorted(found, key=lambda item: item[0])]
-
-
-def _reads(node) -> set[str]:
-    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
 
 
 def _ordinals(fn: ast.FunctionDef) -> dict[int, int]:
@@ -222,7 +232,7 @@ def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outsid
     for statement in mine:
         own = _key(statement) not in written
         if own:
-            known = bound | outside | _stored_in(statement)   # (a loop's own target, a comprehension's names)
+            known = bound | outside | _names([statement], ast.Store)   # (a loop's own target, a comprehension's names)
             counterparts = _counterparts(statement, theirs, known)
             for model, places in counterparts[:2]:
                 edits = tuple((ordinals[id(a)], ast.unparse(b)) for a, b in places)
@@ -233,16 +243,12 @@ def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outsid
                     and _signature(statement) not in {_signature(s) for s in theirs}:
                 changes.append(("extra_step", ((ordinals[id(statement)], None),)))
         header = [statement.target] if isinstance(statement, ast.For) else [statement] if isinstance(statement, _SIMPLE) else []
-        bound |= {n.id for part in header for n in ast.walk(part) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+        bound |= _names(header, ast.Store)
     if not _alike(mine, written):
         # (steps added or taken out only where the def is the reference's for the most part: in code of the
         # student's own, a statement the reference lacks is no extra step)
         return [change for change in changes if change[0] == "aligned"]
     return changes + _missing_steps(student, reference, mine, theirs, ordinals)
-
-
-def _stored_in(statement: ast.stmt) -> set[str]:
-    return {n.id for n in ast.walk(statement) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
 
 
 def _alike(mine: list[ast.stmt], written: set[str]) -> bool:
@@ -342,7 +348,7 @@ def _blocks(fn: ast.FunctionDef) -> list[list[ast.stmt]]:
 def aligned_mutants(student_tree: ast.Module, reference_tree: ast.Module, function: str) -> list[Mutant]:
     """The aligned changes (:func:`aligned_changes`) of every def ``function`` runs in the student's module
     that the reference defines too, as mutants of the student's code (repairs tell them by their code)."""
-    if not ENABLED:
+    if not _ENABLED[0]:
         return []
     student_defs, reference_defs = _defs(student_tree), _defs(reference_tree)
     outside = frozenset(_module_names(student_tree)) | _BUILTINS
