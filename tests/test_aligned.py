@@ -149,3 +149,38 @@ def test_counterparts_are_left_out_while_the_operators_are_measured():
     with aligned.left_out():
         assert aligned_mutants(ast.parse(slip), ast.parse(REFERENCE), "project") == []
     assert aligned_mutants(ast.parse(slip), ast.parse(REFERENCE), "project")   # (and back after the block)
+
+
+WARP_REFERENCE = '''
+import cv2
+import numpy as np
+
+def warp_pair(img_l, img_r, H1, H2):
+    height, width = img_l.shape[:2]
+    left = cv2.warpPerspective(img_l, H1, (width, height))
+    right = cv2.warpPerspective(img_r, H2, (width, height))
+    return left, right
+'''
+
+
+def test_a_name_of_ones_own_where_the_counterpart_writes_an_expression_is_a_place():
+    # (the student's own step computes `size`, a canvas of their choosing; the counterpart writes the input's size
+    # there, from names computed as the reference computes them: the change is made in every statement alike too)
+    student = WARP_REFERENCE.replace("    left = ", "    size = (2 * width, height)\n    left = ") \
+        .replace("H1, (width, height)", "H1, size").replace("H2, (width, height)", "H2, size")
+    tree, reference = ast.parse(student), ast.parse(WARP_REFERENCE)
+    made = [ast.unparse(_defs(ast.parse(apply_edits(student, m.edits)))["warp_pair"])
+            for m in aligned_mutants(tree, reference, "warp_pair")]
+    both = [text for text in made if text.count("(width, height)") == 2]
+    assert len(both) == 1 and "size" in both[0]   # (the own step stays; both warps take the input's size)
+    assert sum(text.count("(width, height)") == 1 for text in made) == 2   # (and each alone)
+
+
+def test_a_name_is_not_replaced_by_an_expression_of_values_computed_otherwise():
+    # (`height, width` of the student's own making: the counterpart's expression would read values the student's
+    # code computes otherwise, so the name does not stand for it)
+    student = WARP_REFERENCE.replace("height, width = img_l.shape[:2]", "height, width = img_l.shape[1::-1]") \
+        .replace("    left = ", "    size = (width, height)\n    left = ").replace("H1, (width, height)", "H1, size")
+    tree, reference = ast.parse(student), ast.parse(WARP_REFERENCE)
+    assert not any("H1, (width, height)" in apply_edits(student, m.edits)
+                   for m in aligned_mutants(tree, reference, "warp_pair"))

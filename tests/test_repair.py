@@ -4859,3 +4859,30 @@ def test_twin_blocks_of_rows_added_where_they_stack_are_stacked():
             return A, x1 + x2
     """)
     assert _shown_changes(source, "add_stacked") == [("rows_u + rows_v", "np.vstack([rows_u, rows_v])")]
+
+
+def test_a_difference_made_negative_in_an_output_size_is_no_fix():
+    # (OpenCV takes a non-positive dsize for the input's: `int(x0 - x1)` "mends" a canvas sized otherwise by
+    # coincidence; the same exchange elsewhere, or of a size OpenCV is not given, stays a change to try)
+    student, mutants = _read("""
+        import cv2
+
+        def graded(img, H, x0, x1, y0, y1):
+            size = (int(x1 - x0) + 1, int(y1 - y0) + 1)
+            shift = x1 - x0
+            return cv2.warpPerspective(img, H, size), shift
+    """)
+    exchanged = {student.fix(m).changes[0][2]: m for m in mutants
+                 if m.operator == "swap_operands" and student.fix(m) is not None}
+    assert student.negates_a_size(exchanged["int(x0 - x1)"])
+    assert student.negates_a_size(exchanged["int(y0 - y1)"])
+    assert not student.negates_a_size(exchanged["shift = x0 - x1"])   # (the shift: no size)
+
+
+def test_one_change_made_alike_on_several_lines_is_told_once():
+    fix = repair.Fix(((7, "size", "(width, height)"), (8, "size", "(width, height)")), "graded", "aligned",
+                     (("graded", 1, "aligned", "(width, height)"), ("graded", 2, "aligned", "(width, height)")))
+    assert fix.told("graded") == "changing `size` to `(width, height)` (lines 7 and 8)"
+    twice = repair.Fix(((7, "x", "y"), (7, "x", "y")), "graded", "other_name",
+                       (("graded", 1, "other_name", "y"), ("graded", 2, "other_name", "y")))
+    assert twice.told("graded").count("(line 7)") == 2   # (twice on one line: both told)

@@ -135,9 +135,12 @@ def _differences(mine, theirs):
     return [] if mine == theirs else _WHOLE
 
 
-def _statement_differences(mine: ast.stmt, theirs: ast.stmt):
+def _statement_differences(mine: ast.stmt, theirs: ast.stmt, stand_ins: frozenset = frozenset(),
+                           inputs: frozenset = frozenset()):
     """The places a statement differs from a counterpart at, or None where it cannot be told by
-    places (too many, too long, or the whole statement)."""
+    places (too many, too long, or the whole statement). ``stand_ins``: names the student's own steps
+    bind; one of them where the counterpart writes a short expression of ``inputs`` alone (names
+    computed as the reference computes them) is a place too -- `size` for `(width, height)`."""
     found = []
     for a, b in zip(_parts(mine), _parts(theirs)):
         inner = _differences(a, b)
@@ -148,10 +151,20 @@ def _statement_differences(mine: ast.stmt, theirs: ast.stmt):
         found += inner
     if not found or len(found) > DIFFERENCES:
         return None
+    if len(found) == 1 and _stands_in(*found[0], stand_ins, inputs):
+        return found
     for a, b in found:
         if not _writable(b) or not _a_slip(a, b):
             return None
     return found
+
+
+def _stands_in(mine: ast.expr, theirs: ast.expr, stand_ins: frozenset, inputs: frozenset) -> bool:
+    """Whether the student's code at the one place a statement differs is a name of the student's own
+    steps standing for the counterpart's expression of values the student computes as the reference
+    does (the student's own step in between is where it went wrong, and the statement can do without it)."""
+    return isinstance(mine, ast.Name) and mine.id in stand_ins and not isinstance(theirs, ast.Name) \
+        and _writable(theirs) and _names([theirs], ast.Load) <= inputs
 
 
 def _writable(node: ast.expr) -> bool:
@@ -184,7 +197,8 @@ def _holds(outer: ast.expr, inner: ast.expr) -> bool:
     return any(ast.dump(node) == wanted for node in ast.walk(outer) if type(node) is type(inner))
 
 
-def _counterparts(statement: ast.stmt, reference: list[ast.stmt], known: set[str]):
+def _counterparts(statement: ast.stmt, reference: list[ast.stmt], known: set[str],
+                  stand_ins: frozenset = frozenset(), inputs: frozenset = frozenset()):
     """The reference statements of the same signature, each with the places they differ at, nearest first
     (only those whose new code reads names ``known`` to the student's code at that statement)."""
     signature = _signature(statement)
@@ -194,7 +208,7 @@ def _counterparts(statement: ast.stmt, reference: list[ast.stmt], known: set[str
     for model in reference:
         if _signature(model) != signature:
             continue
-        places = _statement_differences(statement, model)
+        places = _statement_differences(statement, model, stand_ins, inputs)
         if places and all(_names([b], ast.Load) <= known for _, b in places):
             found.append((sum(len(ast.unparse(b)) + len(ast.unparse(a)) for a, b in places), model, places))
     return [(model, places) for _, model, places in sorted(found, key=lambda item: item[0])]
@@ -229,21 +243,29 @@ def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outsid
     changes, seen = [], set()
     parameters = {a.arg for a in ast.walk(student.args) if isinstance(a, ast.arg)}
     bound: set[str] = set(parameters)
+    as_reference: set[str] = set(parameters)   # (names bound as the reference binds them; the others: own steps')
+    alike: dict[tuple, list] = {}   # the same one-place change in several statements: one change too
     for statement in mine:
         own = _key(statement) not in written
         if own:
             known = bound | outside | _names([statement], ast.Store)   # (a loop's own target, a comprehension's names)
-            counterparts = _counterparts(statement, theirs, known)
+            counterparts = _counterparts(statement, theirs, known, frozenset(bound - as_reference),
+                                         frozenset(as_reference | outside))
             for model, places in counterparts[:2]:
                 edits = tuple((ordinals[id(a)], ast.unparse(b)) for a, b in places)
                 if edits not in seen:
                     seen.add(edits)
                     changes.append(("aligned", edits))
+                    if len(places) == 1:
+                        alike.setdefault((ast.dump(places[0][0]), edits[0][1]), []).append(edits[0])
             if not counterparts and isinstance(statement, _SIMPLE) and _rebinds(statement, bound) \
                     and _signature(statement) not in {_signature(s) for s in theirs}:
                 changes.append(("extra_step", ((ordinals[id(statement)], None),)))
         header = [statement.target] if isinstance(statement, ast.For) else [statement] if isinstance(statement, _SIMPLE) else []
         bound |= _names(header, ast.Store)
+        if not own:
+            as_reference |= _names(header, ast.Store)
+    changes += [("aligned", tuple(edits)) for edits in alike.values() if len({o for o, _ in edits}) > 1]
     if not _alike(mine, written):
         # (steps added or taken out only where the def is the reference's for the most part: in code of the
         # student's own, a statement the reference lacks is no extra step)

@@ -103,6 +103,8 @@ OPERATORS = {
     "slice": ("slice", "column", "entries", "first", "last"),   # l[:, 1:] -> l[:, :2], A[r, 3:7] -> A[r, 4:8]
     "drop_slice": ("first", "only", "all"),          # pts[:8] -> pts: every point, not the first few
     "slice_item": ("slice", "entry", "entries"),       # M[0, 1:] = s -> M[0, 1] = s: one entry written, not a run
+    "cross_items": ("exchang", "swap", "end", "other point"),   # (x0, y1), (x1, y0) -> (x0, y0), (x1, y1)
+    "row_column": ("row", "column", "[:, "),           # X[2] += dz -> X[:, 2] += dz: a row indexed where a column belongs
     "canvas": ("size", "height", "width", "max", "both"),   # np.zeros((h1, w1 + w2)) -> max(h1, h2) rows
     "loop_all": ("only", "first", "all", "every"),    # for i in range(8) -> range(len(p1)): every point
     "power_spread": ("square", "sum", "**"),          # (x + y) ** 2 -> x ** 2 + y ** 2
@@ -814,6 +816,13 @@ def _make_swap_items(node, payload):
     return new
 
 
+def _make_cross_items(node, payload):
+    new = copy.deepcopy(node)   # ((x0, y0), (x1, y1)) -> ((x0, y1), (x1, y0)): the k-th items of two points exchanged
+    i, j, k = payload
+    new.elts[i].elts[k], new.elts[j].elts[k] = new.elts[j].elts[k], new.elts[i].elts[k]
+    return new
+
+
 def _make_compare(node, payload):
     new = copy.deepcopy(node)
     operator, threshold = payload if isinstance(payload, tuple) else (payload, None)
@@ -925,6 +934,15 @@ def _make_slice(node, payload):
         return ast.Slice(copy.deepcopy(node.upper), copy.deepcopy(node.lower), None)
     lower, upper = payload   # l[:, 1:] -> l[:, :2]; A[r, 3:7] -> A[r, 4:8]
     return ast.Slice(None if lower is None else _signed(lower), None if upper is None else _signed(upper), None)
+
+
+def _make_row_column(node, payload):
+    made = copy.deepcopy(node)
+    if payload == "column":   # X[k] -> X[:, k]
+        made.slice = ast.Tuple([ast.Slice(None, None, None), copy.deepcopy(node.slice)], ast.Load())
+    else:                     # X[:, k] -> X[k]
+        made.slice = copy.deepcopy(node.slice.elts[1])
+    return made
 
 
 def _make_slice_item(node, payload):
@@ -1468,7 +1486,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "whole_vector": _make_whole_vector, "quadrant": _make_quadrant, "swap_both": _make_swap_both,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
-         "slice": _make_slice, "slice_item": _make_slice_item, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+         "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -3266,6 +3284,8 @@ def _student_changes(node, parent, parents, words):
         yield from _slice_changes(node)
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Store):
         yield from _slice_item_changes(node)
+    if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name):
+        yield from _row_column_changes(node)
 
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.slice, ast.Slice) \
             and node.slice.lower is None and node.slice.step is None \
@@ -4618,6 +4638,18 @@ def _loop_order_changes(iterable):
         yield "loop_order", f"reversed({ast.unparse(iterable)})", ""
 
 
+def _row_column_changes(node: ast.Subscript):
+    """A coordinate's row taken where its column belongs, or back: `X[2] += dz` moves the third point,
+    `X[:, 2] += dz` every point's depth (points are rows). Only a constant index 0..3 of a name."""
+    item = node.slice
+    if _constant_index(item) in (0, 1, 2, 3):
+        yield "row_column", "column", ""
+    elif isinstance(item, ast.Tuple) and len(item.elts) == 2 and isinstance(item.elts[0], ast.Slice) \
+            and item.elts[0].lower is None and item.elts[0].upper is None and item.elts[0].step is None \
+            and _constant_index(item.elts[1]) in (0, 1, 2, 3):
+        yield "row_column", "row", ""
+
+
 def _slice_item_changes(node: ast.Subscript):
     """A slice written to where one entry belongs: `M[0, 1:] = s` fills the rest of row 0 too (the
     translation `M[0, 2]` overwritten with the shear), `K[:2, 2] = p` where `K[0, 2] = p` was meant: the
@@ -5777,6 +5809,15 @@ def _item_swaps(node, parent):
     for i, j in pairs:
         if ast.dump(items[i]) != ast.dump(items[j]):
             yield "swap_items", (i, j), ""
+    # (and one coordinate of two points exchanged between them: a line's end points each given the other's
+    # row, `(x_top, h - 1), (x_bottom, 0)` for `(x_top, 0), (x_bottom, h - 1)`)
+    points = [item for item in items if isinstance(item, (ast.Tuple, ast.List))]
+    if len(points) == len(items) <= 4 and len({len(p.elts) for p in points}) == 1 and 2 <= len(points[0].elts) <= 3:
+        for i, j in itertools.combinations(range(len(items)), 2):
+            for k in range(len(points[0].elts)):
+                if ast.dump(points[i].elts[k]) != ast.dump(points[j].elts[k]) \
+                        and ast.dump(points[i]) != ast.dump(points[j]):
+                    yield "cross_items", (i, j, k), ""
 
 
 def _column_taken(node) -> bool:

@@ -106,10 +106,21 @@ class Fix:
         if self.operator in _IN_WORDS:   # (told in words: see _Student._moved)
             return self.changes[0][2].replace("{inside}", inside)
         merged = _nested_merged(self.changes)
+        # (one change made alike on several lines -- `size` to `(width, height)` in both warps -- told once)
+        lines_of: dict = {}
+        for line, before, after in merged:
+            lines_of.setdefault((before, after), []).append(line)
+        if all(len(set(lines)) == len(lines) for lines in lines_of.values()):   # (twice on one line: told twice)
+            merged = [(lines[0], before, after) for (before, after), lines in lines_of.items()]
+        else:
+            lines_of = {(before, after): [line] for line, before, after in merged}
+        at = {(before, after): (f"line {lines[0]}" if len(lines) == 1 else
+                                f"lines {', '.join(map(str, lines[:-1]))} and {lines[-1]}")
+              for (before, after), lines in lines_of.items()}
         # (a block taken out whole is shown by its first line, `if test: ...`, and told by its lines)
         blocks = [_BLOCK_SHOWN.match(before) if after == "pass" else None for _, before, after in merged]
         said = [f"`{block[1]}` (lines {block[2]}{inside})" if block else
-                f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" (line {line}{inside})"
+                f"`{before}`" + ("" if after == "pass" else f" to `{after}`") + f" ({at[before, after]}{inside})"
                 for (line, before, after), block in zip(merged, blocks)]
         verbs = ["removing " if after == "pass" else "changing " for _, _, after in merged]
         # (one verb for changes of one kind; each its own where a step is taken out and a line changed)
@@ -1022,6 +1033,35 @@ class _Student:
         parent, field, index = parents.get(id(node), (None, None, None))
         return isinstance(parent, ast.Call) and field == "args" and index == 0 \
             and _dotted(parent.func).rsplit(".", 1)[-1] in _REDUCTIONS
+
+    def negates_a_size(self, mutant) -> bool:
+        """Whether the mutant exchanges the two sides of a difference that is an output size OpenCV is given
+        (`size = (int(x1 - x0) + 1, h)` -> `int(x0 - x1) + 1`, then `cv2.warpPerspective(img, H, size)`): a
+        canvas's extent made negative is no size -- OpenCV takes the input's in its place, which mends a
+        canvas sized otherwise by coincidence, not by the slip."""
+        if len(mutant.edits) != 1:
+            return False
+        where = mutant.edits[0][0]
+        own = _defs(self.tree).get(where)
+        try:
+            mutated = _defs(mutated_defs(self.tree, mutant.edits, self.text)).get(where)
+        except (ValueError, SyntaxError):
+            return False
+        if own is None or mutated is None:
+            return False
+        sizes = _output_size_names(own)
+        for before, after in zip(_statements_of(own), _statements_of(mutated)):
+            if ast.dump(before) == ast.dump(after):
+                continue
+            assigns = isinstance(before, (ast.Assign, ast.AugAssign, ast.AnnAssign))
+            sized = (assigns and bool(_bound_names(before) & sizes)) or any(
+                id(arg) in {id(n) for n in ast.walk(before)} for arg in _output_size_arguments(before))
+            return sized and any(
+                isinstance(a, ast.BinOp) and isinstance(a.op, ast.Sub) and isinstance(b, ast.BinOp)
+                and isinstance(b.op, ast.Sub) and ast.dump(a.left) == ast.dump(b.right)
+                and ast.dump(a.right) == ast.dump(b.left) and ast.dump(a.left) != ast.dump(a.right)
+                for a, b in zip(ast.walk(before), ast.walk(after)))
+        return False
 
     def skips_a_right_step(self, mutant) -> bool:
         """Whether the mutant reads, in place of a name, its earlier form that its last assignment above was
@@ -2143,6 +2183,30 @@ def _sized_names(nodes) -> set:
     return names
 
 
+_OUTPUT_SIZE_AT = {"warpPerspective": 2, "warpAffine": 2, "resize": 1}   # OpenCV's `dsize` argument
+
+
+def _output_size_arguments(tree) -> list:
+    """The expressions ``tree`` passes to OpenCV as an output size (`dsize`)."""
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and _dotted(node.func).startswith(("cv2.", "cv.")):
+            at = _OUTPUT_SIZE_AT.get(_dotted(node.func).rsplit(".", 1)[-1])
+            found += [node.args[at]] if at is not None and len(node.args) > at else []
+            found += [k.value for k in node.keywords if k.arg == "dsize"]
+    return found
+
+
+def _output_size_names(fn) -> set:
+    """The names a def passes to OpenCV as an output size (`size`, or `w` and `h` of `(w, h)`)."""
+    return {n.id for arg in _output_size_arguments(fn) for n in ast.walk(arg) if isinstance(n, ast.Name)}
+
+
+def _statements_of(fn) -> list:
+    """A def's statements in walking order (two copies of one def, changed at one place, pair up)."""
+    return [node for node in ast.walk(fn) if isinstance(node, ast.stmt) and node is not fn]
+
+
 def _drawn_on(fn) -> set[str]:
     """The names ``fn`` draws on with OpenCV (the image a cv2.line, cv2.circle, ... is given first)."""
     return {node.args[0].id for node in ast.walk(fn) if isinstance(node, ast.Call) and node.args
@@ -2678,6 +2742,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                                      not (refused_type and _converts(pair[0])),
                                      pair[0].key not in exactly, pair[1].operator != "twin_test",
                                      not student.extra_block(pair[0]),
+                                     not (pair[0].key in exactly and _extra_step(pair[1], student.reference_source, function)),
                                      _undoes_a_step(student, *pair),
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
@@ -2688,7 +2753,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             break
         if fix.changes[0][0] in lines or _dehomogenisation_dropped(fix) or student.skips_a_right_step(mutant) \
                 or _one_argument_twice(fix) \
-                or student.compares_with_its_own_size(mutant) or student.reduces_a_number(mutant, numbers):
+                or student.compares_with_its_own_size(mutant) or student.reduces_a_number(mutant, numbers) \
+                or student.negates_a_size(mutant):
             continue
         confirmed = (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
             and not variant.writes_inputs(mutant)
@@ -2740,7 +2806,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # (and where the block's own test, given the twin it forgot, mends alike -- `if whole(tx):` made `if whole(tx)
     # and whole(ty):` --, the step was meant, and its test is the slip; it is tried first, on the block's line)
     tests_made = [pair for pair in fixes if pair[1].operator == "twin_test"]
-    fixes = halves_made or tests_made or blocks or fixes
+    # (likewise a statement doing what the reference never does -- `R = R / np.linalg.norm(R)` --, taken out and
+    # giving the expected answers: a change inside it that mends alike makes it do nothing on these inputs, `axis=-1`
+    # dividing a rotation's rows by their norms of 1; moving it after its use skips it)
+    own_steps = [pair for pair in fixes if pair[0].key in exactly and pair[1].operator in REMOVALS
+                 and _extra_step(pair[1], student.reference_source, function)]
+    fixes = halves_made or tests_made or blocks or own_steps or fixes
     passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:

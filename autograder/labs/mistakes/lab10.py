@@ -3,7 +3,7 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
-from . import one_point_by_length
+from . import one_point_by_length, reference_def_with
 
 # The reference's decomposition (RQ by a QR of the flipped block, K's signs fixed) with the negation of P as given.
 _DECOMPOSE = """
@@ -20,6 +20,19 @@ _DECOMPOSE = """
         """
 
 MISTAKES = {
+    # the blind set 1205b's 10/05: the depth shift added to the third point (a row) where every depth (a column) belongs
+    "dolly_zoom moving the third point instead of every depth": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            focal_lengths = f0 * distances / z0
+            frames = []
+            for f, d in zip(focal_lengths, distances):
+                moved = X.copy()
+                moved[2] += d - z0
+                frames.append(perspective_project(moved, f))
+            return focal_lengths, np.stack(frames)
+        """, ["to `moved[:, 2] += d - z0`"]),
     # the blind set 1204d's 10/03: the translation made of length 1, as an essential matrix's would be
     "decomposition normalising t to unit length": ("lab10.ex5", """
         _decompose_right = decompose_camera_matrix

@@ -45,6 +45,11 @@ _WITHOUT_K = _MATCHED + """            inliers = mask.ravel().astype(bool)
 """
 
 MISTAKES = {
+    # the blind set 1205b's 11/02: a steep line's end points each given the other border's row
+    "draw_epipolar_lines pairing a steep line's end points with the wrong rows": ("lab11.ex2", reference_def_with(
+        "lab11_two_view", "draw_epipolar_lines", "p, q = (-c / a, 0.0), (-(c + b * (height - 1)) / a, height - 1.0)",
+        "p, q = (-c / a, height - 1.0), (-(c + b * (height - 1)) / a, 0.0)"),
+        ["changing `((-c / a, height - 1.0), (-(c + b * (height - 1)) / a, 0.0))`"]),
     # the blind set 1204d's 11/05: V made a proper rotation by negating a column of Vt, not its last row (and
     # not told as the 8-point core's F negated: a rank-2 matrix is the same up to sign)
     "essential_8point negating a column of Vt for a proper V": ("lab11.ex3", """

@@ -34,6 +34,21 @@ _DP = """
 """
 
 MISTAKES = {
+    # the blind set 1205b's 12/01: both views warped onto a canvas grown to hold them, not the input's size
+    "rectify warping onto a canvas grown to hold both views": ("lab12.ex3", reference_def_with(
+        "lab12_stereo", "rectify",
+        "rect_l = cv2.warpPerspective(np.asarray(img_l), H1, (width, height), flags=cv2.INTER_LINEAR)",
+        "corners = np.array([[0.0, 0.0, 1.0], [width - 1.0, 0.0, 1.0], [0.0, height - 1.0, 1.0], [width - 1.0, height - 1.0, 1.0]]).T\n"
+        "warped = np.hstack([H1 @ corners, H2 @ corners])\n"
+        "warped = warped[:2] / warped[2]\n"
+        "x0, y0 = np.floor(warped.min(axis=1))\n"
+        "x1, y1 = np.ceil(warped.max(axis=1))\n"
+        "offset = np.array([[1.0, 0.0, -x0], [0.0, 1.0, -y0], [0.0, 0.0, 1.0]])\n"
+        "H1, H2 = offset @ H1, offset @ H2\n"
+        "size = (int(x1 - x0) + 1, int(y1 - y0) + 1)\n"
+        "rect_l = cv2.warpPerspective(np.asarray(img_l), H1, size, flags=cv2.INTER_LINEAR)").replace(
+            "H2, (width, height)", "H2, size"),
+        ["`size` to `(width, height)` (lines"]),
     # the blind set 1204d's 12/08: the decoded stripe index taken as the projector column itself
     "structured light with the stripe index as the projector column": ("lab12.ex6", """
         def depth_from_structured_light(images, f, baseline):
