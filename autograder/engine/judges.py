@@ -381,7 +381,9 @@ def where_matrices_differ(got, expected, up_to_scale: bool = False) -> str:
     """Where the error of ``got`` lies, in words: "in its third row", "in every entry"...
 
     The entries carrying the error are those at least a tenth of the largest
-    entry error (up to scale, both matrices at unit norm and the same sign); the
+    entry error (up to scale, both matrices at unit norm and the same sign), or
+    of the largest error relative to its row's size (a camera matrix's third row,
+    of entries near 1 beside rows of hundreds, wrong by half is wrong too); the
     rows or the columns holding them are named, whichever are fewer.
     """
     got, expected = np.asarray(got, np.float64), np.asarray(expected, np.float64)
@@ -392,15 +394,20 @@ def where_matrices_differ(got, expected, up_to_scale: bool = False) -> str:
         if np.linalg.norm(got + expected) < np.linalg.norm(got - expected):
             got = -got
     error = np.abs(got - expected)
-    wrong = error >= 0.1 * error.max()
+    sizes = np.abs(expected).max(axis=-1, keepdims=True) if expected.ndim == 2 else np.abs(expected)
+    relative = error / np.maximum(sizes, 1e-12 * max(float(np.abs(expected).max()), 1e-300))
+    wrong = (error >= 0.1 * error.max()) | ((relative >= 0.1 * relative.max()) & (relative >= 1e-6))
     if wrong.all() or got.ndim != 2 or max(got.shape) > len(_ORDINALS):
         return "in every entry"
     if wrong.sum() == 1:
         (row, column), = zip(*np.nonzero(wrong))
         return f"in entry [{row}, {column}] only" if got.shape[0] > 1 else f"in entry [{column}] only"
     rows, columns = np.flatnonzero(wrong.any(axis=1)), np.flatnonzero(wrong.any(axis=0))
-    kind, where, count = ("row", rows, got.shape[0]) if len(rows) <= len(columns) \
-        else ("column", columns, got.shape[1])
+    # (the rows or the columns holding them, whichever are fewer -- or whichever are not all: a camera matrix
+    # wrong in every row but its last column right is wrong "in its first, second and third columns")
+    by_rows = len(columns) == got.shape[1] if (len(rows) == got.shape[0]) != (len(columns) == got.shape[1]) \
+        else len(rows) <= len(columns)
+    kind, where, count = ("row", rows, got.shape[0]) if by_rows else ("column", columns, got.shape[1])
     if len(where) == count:  # spread over every row and every column
         if wrong.sum() > 3:
             return "in every row and every column"

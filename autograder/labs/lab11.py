@@ -1809,13 +1809,16 @@ def few_matches(t: Trial, pair, what: str, F, pts1, pts2, points3d):
     t.fail(f"{what} returned only {m} matches; " + measured("keep at least 20 (the photos share plenty of texture)"))
 
 
+EPIPOLAR_FULL = 1.5   # px: the median distance of true correspondences to F's lines that has full marks
+
+
 def judge_pipeline_F(t: Trial, pair, F):
     g1, g2 = truth.grid_correspondences(pair)
     show_epipolar(t, "epipolar lines of your F on the two rendered photos (three pictures hung "
                   "at different depths)", pair.F, F,
                   (pair.img1, pair.img2), g1[::97], g2[::97])
     distance = np.median(truth.symmetric_epipolar_distance(F, g1, g2))
-    if distance <= 1.5:
+    if distance <= EPIPOLAR_FULL:
         return passed(f"true correspondences are {distance:.2f} px from your epipolar lines (median "
                       f"over {len(g1)} pixels with known depth)")
     K = pair.K
@@ -1824,10 +1827,10 @@ def judge_pipeline_F(t: Trial, pair, F):
         "this is E, not F: F = K^-T E K^-1 acts on pixels": np.linalg.inv(K).T @ F @ np.linalg.inv(K),
     }
     for mistake, corrected in candidates.items():
-        if np.median(truth.symmetric_epipolar_distance(corrected, g1, g2)) <= 1.5:
+        if np.median(truth.symmetric_epipolar_distance(corrected, g1, g2)) <= EPIPOLAR_FULL:
             t.fail(f"your F is wrong: it looks like {mistake}.", mistake=mistake)
-    message = (f"true correspondences are {format_apart(distance, 1.5, 2)} px from your epipolar lines (median over "
-               f"{len(g1)} pixels with known depth; expected below 1.5 px)")
+    message = (f"true correspondences are {format_apart(distance, EPIPOLAR_FULL, 2)} px from your epipolar lines (median "
+               f"over {len(g1)} pixels with known depth; expected below {EPIPOLAR_FULL:g} px)")
     if distance <= 4.0:
         return partial(0.5, message, ROBUST_F_HINT.said(t))
     t.fail(message)
@@ -1857,7 +1860,7 @@ ROBUST_F_HINT = Hint(
                            | ~(mentions(".queryIdx") | mentions(".trainIdx"))))))
 
 
-@ex6.check("two_view_reconstruction returns F, pts1, pts2, points3d of matching shapes (a colour and a grey pair)",
+@ex6.check("two_view_reconstruction returns F, pts1, pts2, points3d of matching shapes (colour, grey and mixed pairs)",
            points=1, timeout=PIPELINE_TIMEOUT)
 def pipeline_shapes(t):
     pair = truth.rendered_pair(0)
@@ -1877,7 +1880,19 @@ def pipeline_shapes(t):
                              "The same pair in colour (BGR) passed. " + measured(
                                  "Images are grey (H, W) or BGR (H, W, 3), as the API's conventions say: take "
                                  "either (convert to grey only a colour image).")) from None
-    return passed(f"{len(pts1)} matches ({len(grey_pts1)} on the grey pair)")
+    # (and each image is grey or BGR on its own: a pair of one of each, both ways round)
+    for mixed, said in ((dataclasses.replace(pair, img2=grey.img2), "BGR img1, grey img2"),
+                        (dataclasses.replace(pair, img1=grey.img1), "grey img1, BGR img2")):
+        try:
+            call_reconstruction(t, mixed)
+        except StudentFailure as failure:
+            if failure.outcome.kind != "exception":
+                raise
+            raise StudentFailure(failure.outcome, f"two_view_reconstruction({said}, K): {failure.message}\n"
+                                 "The same pair with both images in colour, and with both grey, passed. " + measured(
+                                     "Each image is grey (H, W) or BGR (H, W, 3) on its own, as the API's conventions "
+                                     "say: decide for each image from its own shape.")) from None
+    return passed(f"{len(pts1)} matches ({len(grey_pts1)} on the grey pair; a mixed pair both ways round)")
 
 
 @ex6.check("two_view_reconstruction: F agrees with the true epipolar geometry", points=3,
@@ -2050,9 +2065,7 @@ def _moved_whole(got, X) -> float | None:
 
 def structure_error(got, X) -> float:
     """Median distance of ``got`` to ``X`` after one global scale (sign included), relative to |X|."""
-    ratios = np.linalg.norm(X, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300)
-    scale = float(np.median(ratios)) * (1.0 if np.median(np.sum(got * X, axis=1)) >= 0 else -1.0)
-    return float(np.median(np.linalg.norm(scale * got - X, axis=1) / np.linalg.norm(X, axis=1)))
+    return float(np.median(scaled_errors(got, X)[1]))
 
 
 def pose_mistakes(pair, pts1, pts2, F=None) -> dict[str, np.ndarray]:
@@ -2129,17 +2142,28 @@ RECOVER_POSE_HINT = Hint(
             "of both cameras).")
 
 
-def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
+def correct_matches(pair, pts1, pts2, points3d) -> np.ndarray:
+    """Which matches are correct (image 2's point within 2 px of the true one) with a finite 3D point."""
     X, true2, valid = truth.true_correspondences(pair, pts1)
     good = valid & (np.linalg.norm(pts2 - np.nan_to_num(true2), axis=1) <= 2.0)
-    good &= np.all(np.isfinite(points3d), axis=1)
+    return good & np.all(np.isfinite(points3d), axis=1)
+
+
+def scaled_errors(got, X) -> tuple[float, np.ndarray]:
+    """The one global scale (its sign too) taking ``got`` nearest ``X``, and each point's distance
+    to ``X`` after it, relative to its distance to camera 1."""
+    ratios = np.linalg.norm(X, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300)
+    scale = float(np.median(ratios)) * (1.0 if np.median(np.sum(got * X, axis=1)) >= 0 else -1.0)
+    return scale, np.linalg.norm(scale * got - X, axis=1) / np.linalg.norm(X, axis=1)
+
+
+def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
+    good = correct_matches(pair, pts1, pts2, points3d)
     if good.sum() < 10:
         name_normalised_points(t, pair, pts1, pts2)
         t.fail(f"only {good.sum()} of your matches are correct, too few to judge the 3D points")
-    got, X = points3d[good], X[good]
-    ratios = np.linalg.norm(X, axis=1) / np.maximum(np.linalg.norm(got, axis=1), 1e-300)
-    scale = float(np.median(ratios)) * (1.0 if np.median(np.sum(got * X, axis=1)) >= 0 else -1.0)
-    error = np.linalg.norm(scale * got - X, axis=1) / np.linalg.norm(X, axis=1)
+    got, X = points3d[good], truth.true_correspondences(pair, pts1)[0][good]
+    scale, error = scaled_errors(got, X)
     if show:
         t.svg("top view (X-Z, camera 1 frame, Z up the page) of the true points and yours, "
               f"scaled by {abs(scale):.3g}", svg_points({

@@ -1034,6 +1034,19 @@ class _Student:
         return isinstance(parent, ast.Call) and field == "args" and index == 0 \
             and _dotted(parent.func).rsplit(".", 1)[-1] in _REDUCTIONS
 
+    def leaves_a_step_unused(self, mutant) -> bool:
+        """Whether a statement moved leaves another's result unread (`extrinsic = np.hstack([R, t])` moved above
+        `R = R / np.linalg.norm(R)`: the division is never used): a step skipped, its slip left in place."""
+        if mutant.edits[0][2] != "move":
+            return False
+        where = mutant.edits[0][0]
+        own = _defs(self.tree).get(where)
+        try:
+            mutated = _defs(mutated_defs(self.tree, mutant.edits, self.text)).get(where)
+        except (ValueError, SyntaxError):
+            return False
+        return own is not None and mutated is not None and bool(_unread_steps(mutated) - _unread_steps(own))
+
     def negates_a_size(self, mutant) -> bool:
         """Whether the mutant exchanges the two sides of a difference that is an output size OpenCV is given
         (`size = (int(x1 - x0) + 1, h)` -> `int(x0 - x1) + 1`, then `cv2.warpPerspective(img, H, size)`): a
@@ -2183,6 +2196,35 @@ def _sized_names(nodes) -> set:
     return names
 
 
+def _unread_steps(fn) -> set[str]:
+    """The assignments of a def's own top-level statements (by their code) whose names no later statement reads
+    before they are bound again (a return reads; a compound statement reads every name it holds)."""
+    def flat(statements):   # (a change's `if True:` holding statements moved together, and its `pass`, read inline)
+        for node in statements:
+            if isinstance(node, ast.If) and isinstance(node.test, ast.Constant) and node.test.value is True \
+                    and not node.orelse:
+                yield from flat(node.body)
+            elif not isinstance(node, ast.Pass) \
+                    and not (isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant)):
+                yield node
+    body = list(flat(fn.body))
+    reads = lambda node: {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}  # noqa: E731
+    unread = set()
+    for k, node in enumerate(body):
+        if not (isinstance(node, ast.Assign) and all(isinstance(t, ast.Name) for t in node.targets)):
+            continue
+        names = {t.id for t in node.targets}
+        for later in body[k + 1:]:
+            if reads(later) & names:
+                break
+            if isinstance(later, ast.Assign) and names <= _bound_names(later):
+                unread.add(ast.unparse(node))
+                break
+        else:
+            unread.add(ast.unparse(node))
+    return unread
+
+
 _OUTPUT_SIZE_AT = {"warpPerspective": 2, "warpAffine": 2, "resize": 1}   # OpenCV's `dsize` argument
 
 
@@ -2724,6 +2766,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # scale: it mends by that entry's not being 0 on these inputs -- the division is the slip, not the entry)
     # (and a change of a step before the step's removal: a statement taken out mends an input by never
     # running -- `dist = np.asarray(dist) if dist else None` -- where the change of its test mends every input)
+    # (and a line made its twin line's again -- `if img1.ndim == 3` in the line converting img2, the line above's
+    # copy -- before a test given the twin's half beside it, `img1.ndim == 3 and img2.ndim == 3`: the copy is the slip)
     # (and a change giving the reference's answers before one the check only accepts: on noisy points
     # `x2 * P2[2]` for `y2 * P2[2]` -- view 2's y equation dropped -- passes, `P2[0]` -> `P2[1]` is exact;
     # and its very numbers before answers within rounding: `-s * (h - 1) / 2` -> `-s / (h - 1) / 2`, a
@@ -2740,9 +2784,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                     and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, not student.removes_a_mask_guard(pair[0]),
                                      not (refused_type and _converts(pair[0])),
-                                     pair[0].key not in exactly, pair[1].operator != "twin_test",
+                                     pair[0].key not in exactly, pair[1].operator != "mirror",
+                                     pair[1].operator != "twin_test",
                                      not student.extra_block(pair[0]),
-                                     not (pair[0].key in exactly and _extra_step(pair[1], student.reference_source, function)),
                                      _undoes_a_step(student, *pair),
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
@@ -2754,7 +2798,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if fix.changes[0][0] in lines or _dehomogenisation_dropped(fix) or student.skips_a_right_step(mutant) \
                 or _one_argument_twice(fix) \
                 or student.compares_with_its_own_size(mutant) or student.reduces_a_number(mutant, numbers) \
-                or student.negates_a_size(mutant):
+                or student.negates_a_size(mutant) or student.leaves_a_step_unused(mutant):
             continue
         confirmed = (variant.confirmed(mutant, failing) or variant.confirmed_by_check(mutant, failing, inputs)) \
             and not variant.writes_inputs(mutant)
@@ -2806,12 +2850,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # (and where the block's own test, given the twin it forgot, mends alike -- `if whole(tx):` made `if whole(tx)
     # and whole(ty):` --, the step was meant, and its test is the slip; it is tried first, on the block's line)
     tests_made = [pair for pair in fixes if pair[1].operator == "twin_test"]
-    # (likewise a statement doing what the reference never does -- `R = R / np.linalg.norm(R)` --, taken out and
-    # giving the expected answers: a change inside it that mends alike makes it do nothing on these inputs, `axis=-1`
-    # dividing a rotation's rows by their norms of 1; moving it after its use skips it)
-    own_steps = [pair for pair in fixes if pair[0].key in exactly and pair[1].operator in REMOVALS
-                 and _extra_step(pair[1], student.reference_source, function)]
-    fixes = halves_made or tests_made or blocks or own_steps or fixes
+    fixes = halves_made or tests_made or blocks or fixes
     passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:
@@ -3161,7 +3200,9 @@ def _near_the_raise(mutants, trial, function) -> list:
     # is wrong itself -- `if area <= 0: raise` for a triangle listed clockwise -- where a change of the
     # value it tests would only steer round it)
     guard = lambda m: m.operator in GUARD_TESTS and any(0 <= line - m.line <= 1 for line in lines)  # noqa: E731
-    first.sort(key=lambda m: not guard(m))
+    # (but a line made its counterpart's or its twin line's again before all: the slip the code shows -- `img1.ndim`
+    # in the test of the line converting img2 -- where negating that test only steers round it)
+    first.sort(key=lambda m: (m.operator not in ALIGNED and m.operator != "mirror", not guard(m)))
     # (and where a library says it was given a value of the wrong type -- "objectPoints should contain
     # ... Point3f", "Scalar value for argument 'color' is not numeric" -- a conversion anywhere in the
     # function before them: the array is made far from the call it reaches)
@@ -3645,6 +3686,10 @@ class _Variants:
         if mutant.edits[0][2] == "twin_test":
             return False   # (a test of one twin given the other's is what the code shows half written: a shortcut
             #                 taken out mends too, as any shortcut's removal does, and says less)
+        if mutant.edits[0][2] in ALIGNED:
+            return False   # (the test made the reference's own, `img2.ndim == 3` for `img1.ndim == 3`: the slip the
+            #                 code shows; where these inputs need no test -- SIFT takes a colour image too --, the
+            #                 test taken out mends as well, and says less)
         self.untested_guard = None
         for guard in self.student.guards(mutant):
             values = self.answers(guard, failing, self.inputs)

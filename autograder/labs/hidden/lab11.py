@@ -7,6 +7,7 @@ generators as the public checks.
 
 from __future__ import annotations
 
+import cv2
 import numpy as np
 
 from ...engine import strategies as st
@@ -15,9 +16,10 @@ from fixtures import lab11 as truth
 from fixtures.lab12 import triangulation_variants
 
 from ...engine.checks import partial
-from ..lab11 import (E_COLUMN_ORDER, PIPELINE_TIMEOUT, call_reconstruction, conditioned_distance, ex1, ex2, ex3, ex4,
-                     ex5, ex6, judge_epipoles,
-                     judge_lines, judge_pipeline_F, judge_projective, judge_structure, judge_triangulation)
+from ..lab11 import (E_COLUMN_ORDER, EPIPOLAR_FULL, PIPELINE_TIMEOUT, STRUCTURE_MEDIAN, STRUCTURE_P90,
+                     call_reconstruction, conditioned_distance, correct_matches, ex1, ex2, ex3, ex4, ex5, ex6,
+                     judge_epipoles, judge_lines, judge_pipeline_F, judge_projective, judge_structure,
+                     judge_triangulation, scaled_errors)
 from ._draws import seed, uniform
 
 HIDDEN_SEEDS = st.integers(10**6, 2 * 10**6)
@@ -89,12 +91,65 @@ def hidden_epipoles_forward(t):
 
 
 
+# A drawn scene is used only where the sheet's recipe (SIFT, the ratio test, F by RANSAC, E, cv2.recoverPose,
+# triangulation), at a RANSAC threshold of 1 px and of 3 px, reaches full marks on it with room to spare: on
+# a few scenes in a hundred F is nearly degenerate for every pipeline (most matches on one photo) and a correct
+# one's 3D points are off by 12-20% -- the scene's fault, not the student's. Another is drawn from the
+# submission's generator then (measured on 150 scenes: 4 in 100 set aside, none twice in a row).
+ROOM = 0.75          # the share of each full-marks bound the recipe must stay within
+SCENE_DRAWS = 6      # scenes drawn at most (the last is used whatever it is)
+_THRESHOLDS = (1.0, 3.0)
+
+
+def _recipe(pair, threshold: float):
+    """The lab sheet's pipeline (grader-side, trusted): F, the inlier matches and their 3D points."""
+    grey1, grey2 = (cv2.cvtColor(i, cv2.COLOR_BGR2GRAY) if i.ndim == 3 else i for i in (pair.img1, pair.img2))
+    sift = cv2.SIFT_create()
+    (kp1, des1), (kp2, des2) = sift.detectAndCompute(grey1, None), sift.detectAndCompute(grey2, None)
+    good = [m for m, n in (p for p in cv2.BFMatcher(cv2.NORM_L2).knnMatch(des1, des2, k=2) if len(p) == 2)
+            if m.distance < 0.75 * n.distance]
+    pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
+    pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
+    F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, threshold, 0.999)
+    inliers = mask.ravel().astype(bool)
+    pts1, pts2, K = pts1[inliers], pts2[inliers], pair.K
+    _, R, t, _ = cv2.recoverPose(K.T @ F @ K, pts1, pts2, K)
+    X = cv2.triangulatePoints(K @ np.eye(3, 4), K @ np.hstack([R, t]), pts1.T, pts2.T)
+    return F, pts1, pts2, (X[:3] / X[3]).T
+
+
+def _well_posed(pair) -> bool:
+    """Whether the recipe, at each threshold, is well within the full-marks bounds of F and of the 3D points."""
+    g1, g2 = truth.grid_correspondences(pair)
+    for threshold in _THRESHOLDS:
+        try:
+            F, pts1, pts2, points3d = _recipe(pair, threshold)
+        except (cv2.error, ValueError, AttributeError):
+            return False
+        good = correct_matches(pair, pts1, pts2, points3d)
+        if good.sum() < 10 or np.median(truth.symmetric_epipolar_distance(F, g1, g2)) > ROOM * EPIPOLAR_FULL:
+            return False
+        scale, error = scaled_errors(points3d[good], truth.true_correspondences(pair, pts1)[0][good])
+        if scale <= 0 or np.median(error) > ROOM * STRUCTURE_MEDIAN or np.quantile(error, 0.9) > ROOM * STRUCTURE_P90:
+            return False
+    return True
+
+
+def drawn_scene(rng):
+    """A rendered pair drawn from ``rng`` on which the recipe is well posed (see :data:`ROOM`)."""
+    for _ in range(SCENE_DRAWS):
+        scene = seed(rng)
+        pair = truth.rendered_pair(seed=scene)
+        truth._PAIRS.pop((scene, 320, 240, 7.0), None)   # drawn for this submission only: not kept in memory
+        if _well_posed(pair):
+            break
+    return pair
+
+
 @ex6.check("hidden: two_view_reconstruction on another rendered pair", points=2, hidden=True,
            timeout=PIPELINE_TIMEOUT)
 def hidden_pipeline_other_scene(t):
-    scene = seed(t.rng)
-    pair = truth.rendered_pair(seed=scene)
-    truth._PAIRS.pop((scene, 320, 240), None)   # drawn for this submission only: not kept in memory
+    pair = drawn_scene(t.rng)
     F, pts1, pts2, points3d = call_reconstruction(t, pair)
     epipolar = judge_pipeline_F(t, pair, F)
     structure = judge_structure(t, pair, pts1, pts2, points3d, show=False, F=F)

@@ -33,7 +33,7 @@ MISTAKES = {
         "Rt = np.column_stack([np.asarray(R, dtype=np.float64), np.asarray(t, dtype=np.float64).reshape(3)])",
         "R = np.asarray(R, dtype=np.float64)\nR = R / np.linalg.norm(R)\n"
         "Rt = np.column_stack([np.asarray(R, dtype=np.float64), np.asarray(t, dtype=np.float64).reshape(3)])"),
-        ["R / np.linalg.norm(R)"]),
+        ["`np.linalg.norm(R)`", "(line"]),
     # the blind set 1204e's 09/02: R "re-orthonormalised" by QR first, which flips the signs of some of its columns
     "camera_matrix re-orthonormalising R by QR": ("lab09.ex3", reference_def_with(
         "lab09_camera", "camera_matrix",

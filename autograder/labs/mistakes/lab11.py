@@ -45,6 +45,12 @@ _WITHOUT_K = _MATCHED + """            inliers = mask.ravel().astype(bool)
 """
 
 MISTAKES = {
+    # the blind set 1205b's 11/06: image 2's conversion tested on image 1's channels (the line above copied)
+    "two_view_reconstruction converting img2 by img1's number of channels": ("lab11.ex6", reference_def_with(
+        "lab11_two_view", "two_view_reconstruction",
+        "grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2",
+        "grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img1.ndim == 3 else img2"),
+        ["BGR img1, grey img2", "img2.ndim == 3"]),
     # the blind set 1205b's 11/02: a steep line's end points each given the other border's row
     "draw_epipolar_lines pairing a steep line's end points with the wrong rows": ("lab11.ex2", reference_def_with(
         "lab11_two_view", "draw_epipolar_lines", "p, q = (-c / a, 0.0), (-(c + b * (height - 1)) / a, height - 1.0)",
