@@ -351,3 +351,41 @@ def test_a_black_warp_from_code_that_makes_no_unit_range_image_is_not_told_a_cas
     assert failed
     assert not any("values in [0, 1]" in c.message or "[0, 1]" in c.mistake for c in failed), \
         [(c.name, c.message) for c in failed]
+
+
+def test_where_a_matrix_is_wrong_counts_each_row_at_its_own_size():
+    # (a camera matrix: rows of hundreds above a third row of entries near 1; R shrunk by sqrt(3) leaves the
+    # translation column right and every row wrong -- the third too, by as much as the others relative to itself)
+    from autograder.engine.judges import where_matrices_differ
+
+    K = np.array([[400.0, 0.0, 160.0], [0.0, 400.0, 120.0], [0.0, 0.0, 1.0]])
+    Rt = np.hstack([np.eye(3), [[0.5], [0.2], [5.0]]])
+    shrunk = np.hstack([np.eye(3) / np.sqrt(3), [[0.5], [0.2], [5.0]]])
+    assert where_matrices_differ(K @ shrunk, K @ Rt) == "in its first, second and third columns"
+    third = K @ Rt
+    third[2, :3] += [0.3, -0.2, 0.5]   # (a tilted third row: small entries, wrong by as much as they are)
+    assert where_matrices_differ(third, K @ Rt) == "in its third row"
+    noisy = K @ Rt + 1e-13   # (rounding everywhere is no error of a row)
+    noisy[0, 0] += 5.0
+    assert where_matrices_differ(noisy, K @ Rt) == "in entry [0, 0] only"
+
+
+def test_a_statement_moved_so_that_a_step_goes_unread_is_no_fix():
+    import ast
+
+    from autograder.engine.mutants import repair
+
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(K, R, t):
+            R = np.asarray(R, dtype=np.float64)
+            R = R / np.linalg.norm(R)
+            extrinsic = np.hstack([R, t])
+            return K @ extrinsic
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    moves = [m for m in student.mutants("graded") if m.edits[0][2] == "move" and student.fix(m) is not None
+             and "extrinsic" in str(student.fix(m).changes)]
+    assert moves and all(student.leaves_a_step_unused(m) for m in moves)
+    assert not any(student.leaves_a_step_unused(m) for m in student.mutants("graded") if m.edits[0][2] != "move")
