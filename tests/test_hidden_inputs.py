@@ -77,6 +77,23 @@ def test_every_hidden_check_is_graded_and_the_reference_passes_it_under_any_subm
         assert not failing, "\n".join(failing)
 
 
+def test_the_vetted_scenes_are_of_hidden_checks_and_the_reference_passes_a_sample_of_them():
+    """The scenes make_vetted kept (on which the reference and the sheet's recipe got full marks): each key a
+    hidden check, hundreds of scenes each (a submission's draw stays its own), and a sample graded again."""
+    from autograder.labs.hidden._draws import vetted
+    from autograder.labs.hidden._vetted import VETTED
+
+    ids = {check.id: check for check in hidden_checks()}
+    assert VETTED and set(VETTED) <= set(ids)
+    assert all(len(set(scenes)) >= 200 for scenes in VETTED.values())
+    rng = np.random.default_rng(5)
+    assert vetted(rng, "no such check") is rng
+    for content in ("a" * 64, "b" * 64):   # (two more submissions' draws, through the vetted scenes)
+        results = graded(REFERENCE, [ids[key] for key in VETTED], Inputs.for_submission(content, secret="sample"))
+        failing = [f"{key}: {result.message[:300]}" for key, result in results.items() if not result.passed]
+        assert not failing, "\n".join(failing)
+
+
 def test_other_submissions_draw_other_hidden_inputs(reference_draws):
     first, second = reference_draws
     same = [check_id for check_id in first if first[check_id].inputs_digest == second[check_id].inputs_digest]

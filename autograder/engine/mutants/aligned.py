@@ -151,8 +151,9 @@ def _statement_differences(mine: ast.stmt, theirs: ast.stmt, stand_ins: frozense
         found += inner
     if not found or len(found) > DIFFERENCES:
         return None
-    if len(found) == 1 and _stands_in(*found[0], stand_ins, inputs):
-        return found
+    if len(found) == 1 and not any(found[0][0] is part for part in _parts(mine)) \
+            and _stands_in(*found[0], stand_ins, inputs):
+        return found   # (a part of the statement, not its whole value: `return out` is no place of `return f(...)`)
     for a, b in found:
         if not _writable(b) or not _a_slip(a, b):
             return None
@@ -162,8 +163,11 @@ def _statement_differences(mine: ast.stmt, theirs: ast.stmt, stand_ins: frozense
 def _stands_in(mine: ast.expr, theirs: ast.expr, stand_ins: frozenset, inputs: frozenset) -> bool:
     """Whether the student's code at the one place a statement differs is a name of the student's own
     steps standing for the counterpart's expression of values the student computes as the reference
-    does (the student's own step in between is where it went wrong, and the statement can do without it)."""
+    does (the student's own step in between is where it went wrong, and the statement can do without it):
+    values alone, no call -- the reference's own helper called in a student's name's place would stand in for
+    the student's work, not for a slip."""
     return isinstance(mine, ast.Name) and mine.id in stand_ins and not isinstance(theirs, ast.Name) \
+        and not any(isinstance(node, ast.Call) for node in ast.walk(theirs)) \
         and _writable(theirs) and _names([theirs], ast.Load) <= inputs
 
 

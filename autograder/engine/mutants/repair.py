@@ -2766,8 +2766,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # scale: it mends by that entry's not being 0 on these inputs -- the division is the slip, not the entry)
     # (and a change of a step before the step's removal: a statement taken out mends an input by never
     # running -- `dist = np.asarray(dist) if dist else None` -- where the change of its test mends every input)
-    # (and a line made its twin line's again -- `if img1.ndim == 3` in the line converting img2, the line above's
-    # copy -- before a test given the twin's half beside it, `img1.ndim == 3 and img2.ndim == 3`: the copy is the slip)
+    # (but not before a line made its twin line's again -- `if img1.ndim == 3` in the line converting img2, the line
+    # above's copy --: beside it, a test given the twin's half, `img1.ndim == 3 and img2.ndim == 3`, has no precedence)
     # (and a change giving the reference's answers before one the check only accepts: on noisy points
     # `x2 * P2[2]` for `y2 * P2[2]` -- view 2's y equation dropped -- passes, `P2[0]` -> `P2[1]` is exact;
     # and its very numbers before answers within rounding: `-s * (h - 1) / 2` -> `-s / (h - 1) / 2`, a
@@ -2780,12 +2780,12 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # the value: an empty colour, None, mends a drawing that NumPy integers broke)
     refused_type = bool(getattr(trial, "raised", None)) and trial.raised[0] == function \
         and _TYPE_REFUSED.search(str(trial.raised[3] or "")) is not None
+    mirrored = any(f.operator == "mirror" for _, f in shown)
     shown = sorted(((m, f) for m, f in shown if not student.renormalises(m)
                     and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, not student.removes_a_mask_guard(pair[0]),
                                      not (refused_type and _converts(pair[0])),
-                                     pair[0].key not in exactly, pair[1].operator != "mirror",
-                                     pair[1].operator != "twin_test",
+                                     pair[0].key not in exactly, pair[1].operator != "twin_test" or mirrored,
                                      not student.extra_block(pair[0]),
                                      _undoes_a_step(student, *pair),
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,

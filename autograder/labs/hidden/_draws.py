@@ -73,3 +73,17 @@ def board_margin(K, view, pattern, square, size) -> float:
     outline = np.array([[-1, -1, 0], [cols, -1, 0], [cols, rows, 0], [-1, rows, 0]]) * square
     x = lab09.homogeneous_project(lab09.camera(K, R, tvec), outline)
     return float(min(x.min(), size[0] - 1 - x[:, 0].max(), size[1] - 1 - x[:, 1].max()))
+
+
+def vetted(rng: np.random.Generator, key: str) -> np.random.Generator:
+    """A generator for the scene of the hidden check ``key``, seeded with one of the scenes on which the
+    reference solution and the lab sheet's recipe were measured to get full marks (``_vetted.py``, made by
+    ``python -m autograder.labs.hidden.make_vetted``): drawn scenes where a correct pipeline is itself at
+    the edge of a judge's bounds (a panorama's far corners a few pixels off along a chain of homographies)
+    are left out, instead of taking points from correct code on one submission in seventy. ``rng`` itself
+    for a key with no measured scenes."""
+    from ._vetted import VETTED
+
+    scenes = VETTED.get(key)
+    return np.random.default_rng(int(rng.choice(scenes))) if scenes else rng
+

@@ -16,7 +16,7 @@ from ..lab08 import (RANSAC_H_TOLERANCE, blended, diagnose_ransac, ex1, ex2, ex3
                      ext3, fitted_h, diagnose_h, judge_coverage, judge_many_content, judge_matches,
                      judge_homography_warp, judge_region, many_judge, many_names, matched_points, ransac_result,
                      ransac_success, stitch_judge)
-from ._draws import crop, seed, uncached, uniform
+from ._draws import crop, seed, uncached, uniform, vetted
 
 
 STRONG = 1.2   # the perspective divisor w varies by at least this factor over the image
@@ -189,7 +189,7 @@ def views_in_a_row(rng, count: int, steps, rows, strength):
 @ext2.check("stitch_many with 4 images (hidden)", points=2, hidden=True)
 def hidden_many(t):
     what = "stitch_many([img1, img2, img3, img4])"
-    judge = many_judge(t, "many-hidden", four_scene(t.rng), what)
+    judge = many_judge(t, "many-hidden", four_scene(vetted(t.rng, "lab08.ext2::hidden_many")), what)
     verdict = judge_coverage(t, judge, what, many_names(4))
     if verdict.fraction < 1:
         return verdict
@@ -209,7 +209,8 @@ def hidden_many_five(t):
     what = "stitch_many([img1, img2, img3, img4, img5])"
     # (the content alone: the canvas is judged by the other panorama checks, and a correct pipeline puts
     # these views' far corners a few pixels off -- 1 of 12 drawn scenes had 2 px of image 5 cut off)
-    return judge_many_content(t, many_judge(t, "many-hidden-five", five_scene(t.rng), what), what, per_step=True)
+    scene = five_scene(vetted(t.rng, "lab08.ext2::hidden_many_five"))
+    return judge_many_content(t, many_judge(t, "many-hidden-five", scene, what), what, per_step=True)
 
 
 @ext3.check("blend_multiband: disc mask, levels=5, grey odd size (hidden)", points=1, hidden=True)
