@@ -864,6 +864,16 @@ def centre_mistakes_for(R, tv, minors: bool) -> dict:
     return {**named, **minor_sign_mistakes(R, tv)}
 
 
+PRINCIPAL_AXIS = "the principal axis (m3, det(M) m3) returned for the camera centre"
+
+
+def along(vector, direction) -> bool:
+    """Whether ``vector`` (not 0) lies along ``direction``, either way (to within rounding)."""
+    vector, direction = np.asarray(vector, float), np.asarray(direction, float)
+    norms = np.linalg.norm(vector) * np.linalg.norm(direction)
+    return bool(norms > 0 and abs(abs(float(vector @ direction)) / norms - 1.0) <= 1e-9)
+
+
 def judge_center(t: Trial, P, R, tv):
     what = "camera_center(P)"
     got = t.call("camera_center", P)
@@ -893,6 +903,11 @@ def judge_center(t: Trial, P, R, tv):
     form = scale_form(got, C)
     if form is not None:
         t.fail(f"{what} is wrong: {form.sentence}.", mistake=form.mistake)
+    if along(got, np.asarray(P, float)[2, :3]) and not along(C, np.asarray(P, float)[2, :3]):
+        # (the viewing direction: the third row m3 of M = P[:, :3], det(M) m3 pointing the way the camera looks)
+        t.fail(f"{what} is wrong: it returned a vector along the principal axis (the third row m3 of M = P[:, :3], "
+               "the direction the camera looks in, as det(M) m3 is), not the camera centre: the point C with "
+               "P [C, 1] = 0, C = -M^-1 p4.", mistake=PRINCIPAL_AXIS)
     residual = np.linalg.norm(P @ np.append(got, 1.0)) / np.linalg.norm(P)
     shown, wanted = format_arrays_apart(got, C)
     t.fail(f"{what} returned {shown}; expected {wanted} (|P [C, 1]| / |P| = {residual:.2g}, should be 0)")

@@ -20,6 +20,12 @@ _DECOMPOSE = """
         """
 
 MISTAKES = {
+    # the blind set 1205b's 10/02: the principal axis det(M) m3 returned where the centre belongs
+    "camera_center returning the principal axis": ("lab10.ex5", """
+        def camera_center(P):
+            M = np.asarray(P, dtype=np.float64)[:, :3]
+            return np.linalg.det(M) * M[2]
+        """, ["along the principal axis"]),
     # the blind set 1205b's 10/05: the depth shift added to the third point (a row) where every depth (a column) belongs
     "dolly_zoom moving the third point instead of every depth": ("lab10.ext2", """
         def dolly_zoom(points, f0, z0, distances):
