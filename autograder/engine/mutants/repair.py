@@ -1037,31 +1037,28 @@ class _Student:
     def leaves_a_step_unused(self, mutant) -> bool:
         """Whether a statement moved leaves another's result unread (`extrinsic = np.hstack([R, t])` moved above
         `R = R / np.linalg.norm(R)`: the division is never used): a step skipped, its slip left in place."""
-        if mutant.edits[0][2] != "move":
-            return False
+        defs = self._def_changed(mutant) if mutant.edits[0][2] == "move" else None
+        return defs is not None and bool(_unread_steps(defs[1]) - _unread_steps(defs[0]))
+
+    def _def_changed(self, mutant) -> tuple | None:
+        """(the def the mutant's first change is in, that def changed), or None where it cannot be made."""
         where = mutant.edits[0][0]
         own = _defs(self.tree).get(where)
         try:
             mutated = _defs(mutated_defs(self.tree, mutant.edits, self.text)).get(where)
         except (ValueError, SyntaxError):
-            return False
-        return own is not None and mutated is not None and bool(_unread_steps(mutated) - _unread_steps(own))
+            return None
+        return None if own is None or mutated is None else (own, mutated)
 
     def negates_a_size(self, mutant) -> bool:
         """Whether the mutant exchanges the two sides of a difference that is an output size OpenCV is given
         (`size = (int(x1 - x0) + 1, h)` -> `int(x0 - x1) + 1`, then `cv2.warpPerspective(img, H, size)`): a
         canvas's extent made negative is no size -- OpenCV takes the input's in its place, which mends a
         canvas sized otherwise by coincidence, not by the slip."""
-        if len(mutant.edits) != 1:
+        defs = self._def_changed(mutant) if len(mutant.edits) == 1 else None
+        if defs is None:
             return False
-        where = mutant.edits[0][0]
-        own = _defs(self.tree).get(where)
-        try:
-            mutated = _defs(mutated_defs(self.tree, mutant.edits, self.text)).get(where)
-        except (ValueError, SyntaxError):
-            return False
-        if own is None or mutated is None:
-            return False
+        own, mutated = defs
         sizes = _output_size_names(own)
         for before, after in zip(_statements_of(own), _statements_of(mutated)):
             if ast.dump(before) == ast.dump(after):
