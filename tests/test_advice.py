@@ -205,3 +205,18 @@ def test_what_a_change_in_place_did_is_told_from_the_values():
                                 [(0, 1, np.full(1, 7.0)), ("x", None, np.zeros(2))])
     assert args[0][1][0] == 7.0 and args[1] == 2.0 and not kwargs["x"].any()
     assert with_changed((np.ones(1),), {}, [(3, None, np.ones(1))]) is None
+
+
+def test_a_value_computed_and_never_used_is_advice_where_every_check_passes(toy_lab, tmp_path):
+    # (a step begun and not finished -- sub-pixel corners refined, the raw ones calibrated -- that no check asks
+    # for: said at no cost, where the checks could not tell it; a function that fails says it in its failure)
+    unused = "import numpy as np\n\ndef scale(values, factor):\n    ordered = np.sort(values)\n    return values * factor\n"
+    result = grade(submission_from_source(tmp_path, "toy_scaling", unused), ["lab98"])
+    [exercise] = result.exercises
+    assert (exercise.score, exercise.max_score) == (2, 2)
+    [tip] = [c for c in exercise.checks if c.name == "every value computed is used"]
+    assert tip.status == ADVICE and tip.max_score == 0
+    assert tip.message == "your `scale` computes `ordered` (line 4) and never uses it: a step that needs it may be missing"
+    failing = unused.replace("values * factor", "values * factor + 1")
+    result = grade(submission_from_source(tmp_path / "failing", "toy_scaling", failing), ["lab98"])
+    assert not [c for c in result.exercises[0].checks if c.name == "every value computed is used"]
