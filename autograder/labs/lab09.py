@@ -1287,6 +1287,11 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     if wrapped:
         t.fail(f"{what}: {wrapped}.", mistake=wrapped.split(":")[0])
     missing = _points_not_drawn(painted, image.shape, pts, radius)
+    if missing and not _points_not_drawn(changed, image.shape, pts, radius):
+        # (every point has its disc drawn, some in other colours than asked: a colour of the student's own choosing)
+        t.fail(measured(f"{what}: the circles at point(s) {missing} (of {len(pts)}) are drawn, but not in the "
+                        f"colour {tuple(int(v) for v in color)}: every circle takes the colour given (draw_points' "
+                        "default, red (0, 0, 255))."), mistake="circles drawn in other colours than the one given")
     if missing:
         only = sorted(set(range(len(pts))) - set(missing) - set(_off_image(image.shape, pts)))
         first = " (only the first point is drawn: is the return inside the loop?)" if only == [0] else ""

@@ -27,6 +27,15 @@ _APERTURE = """
 """
 
 MISTAKES = {
+    # the blind set 1205b's 09/06: each point drawn in a colour of its own (a colour map of depth), not the default red
+    "project_onto_image drawing each point in its own colour": ("lab09.ex5", """
+        def project_onto_image(image, P, points):
+            pts = project(P, points).reshape(-1, 2)
+            marked = np.array(image, copy=True)
+            for k, p in enumerate(pts):
+                marked = draw_points(marked, p[None], color=(40 * k % 256, 255 - 20 * k % 256, 90))
+            return marked, pts
+        """, ["are drawn, but not in the colour (0, 0, 255)"]),
     # the blind set 1205b's 09/03: R "normalised" by np.linalg.norm, the Frobenius norm (sqrt 3 for a rotation)
     "camera_matrix dividing R by its Frobenius norm": ("lab09.ex3", reference_def_with(
         "lab09_camera", "camera_matrix",
