@@ -282,3 +282,24 @@ def test_correspondences_left_out_are_told_only_when_all_the_others_fit_exactly(
     assert told.value.mistake == CORRESPONDENCES_LEFT_OUT and "misses the last one (point 5" in told.value.message
     name_correspondences_left_out(Said(), "dlt", np.full(6, 0.3), "P")    # (noise everywhere: nothing said)
     name_correspondences_left_out(Said(), "dlt", np.array([5.0, 5.0, 5.0, 0, 0, 0]), "P")   # (half: nothing said)
+
+
+def test_a_dolly_that_moves_the_wrong_points_is_not_told_of_nan_behind_the_camera(tmp_path):
+    """The depth shift added to one point (a row) where every depth belongs: the points the tip would name
+    are not the ones it projects -- and its projection already gives NaN behind the camera --, so the NaN tip,
+    whose premise is a dolly right elsewhere, is not given; the graded checks name the row."""
+    result = grade(mutant(tmp_path, MODULE, """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            focal_lengths = f0 * distances / z0
+            frames = []
+            for f, d in zip(focal_lengths, distances):
+                moved = X.copy()
+                moved[2] += d - z0
+                frames.append(perspective_project(moved, f))
+            return focal_lengths, np.stack(frames)
+        """), ["lab10.ext2"])
+    checks = check_results(result, "lab10.ext2")
+    assert any(c.score < c.max_score for c in checks)
+    assert not [c for c in checks if c.status == "advice" and "behind the camera" in c.message]

@@ -418,11 +418,15 @@ def judge_in_front(t: Trial, what: str, got, expected, behind):
 NAN_BEHIND_HINT = nan_behind("e.g. np.where(Z[:, None] > 0, projected, np.nan)")
 
 
-def advise_nan_behind(t: Trial, what: str, got, behind):
-    """Advice: a point behind the camera (Z <= 0) has no image; NaN says so."""
+def advise_nan_behind(t: Trial, what: str, got, behind, in_front=None):
+    """Advice: a point behind the camera (Z <= 0) has no image; NaN says so. ``in_front``: the right pixels of
+    the other points, where known -- where those are wrong, the points the answer projects are not the ones
+    meant (a dolly's depths moved otherwise), and the graded checks say so: no tip about the others."""
     got = np.asarray(got, dtype=np.float64) if isinstance(got, np.ndarray) else None
     if got is None or got.shape != (len(behind), 2):
         return  # the graded check says what is wrong with the shape
+    if in_front is not None and not np.allclose(got[~behind], np.asarray(in_front, float)[~behind], rtol=1e-6, atol=1e-6):
+        return
     finite = behind & np.isfinite(got).all(axis=1)
     infinite = behind & ~np.isnan(got).any(axis=1) & ~finite   # (Z = 0 divided by: inf)
     if finite.any():

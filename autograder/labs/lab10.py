@@ -1891,8 +1891,11 @@ def dolly_behind(t):
     got = t.call("dolly_zoom", X, 400.0, z0, distances)
     if isinstance(got, (tuple, list)) and len(got) == 2 and isinstance(got[1], np.ndarray) \
             and got[1].shape == (2, len(X), 2) and got[1].dtype.kind == "f":
+        moved = X + [0.0, 0.0, distances[1] - z0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            in_front = 400.0 * distances[1] / z0 * moved[:, :2] / moved[:, 2:]
         advise_nan_behind(t, "dolly_zoom(points, f0=400, z0=5, distances=[5, 2]), in its frame at d = 2,",
-                          got[1][1], X[:, 2] + (distances[1] - z0) <= 0)
+                          got[1][1], moved[:, 2] <= 0, in_front)
 
 
 @ext2.check("dolly_zoom for other focal lengths and distances (in any order, repeated, a single one)", points=2)
