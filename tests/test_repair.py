@@ -4886,3 +4886,13 @@ def test_one_change_made_alike_on_several_lines_is_told_once():
     twice = repair.Fix(((7, "x", "y"), (7, "x", "y")), "graded", "other_name",
                        (("graded", 1, "other_name", "y"), ("graded", 2, "other_name", "y")))
     assert twice.told("graded").count("(line 7)") == 2   # (twice on one line: both told)
+
+
+def test_arctan2_given_its_arguments_in_its_own_order_is_told_alone():
+    # (y first, by their names: the exchange of a cos and a sin downstream mends alike and compensates)
+    def exchanged(before, after):
+        return repair.Fix(((160, before, after),), "graded", "swap_args", (("graded", 1, "swap_args", None),))
+    assert repair._arctan2_ordered(exchanged("np.arctan2(x, y)", "np.arctan2(y, x)"))
+    assert repair._arctan2_ordered(exchanged("math.atan2(u, v)", "math.atan2(v, u)"))
+    assert not repair._arctan2_ordered(exchanged("np.arctan2(y, x)", "np.arctan2(x, y)"))
+    assert not repair._arctan2_ordered(exchanged("(r * np.cos(phi), r * np.sin(phi))", "(r * np.sin(phi), r * np.cos(phi))"))

@@ -1903,6 +1903,19 @@ def _in_known_order(names, value) -> bool:
     return False
 
 
+def _arctan2_ordered(fix: "Fix") -> bool:
+    """Whether the change exchanges arctan2's two arguments into its order by their names: `arctan2(x, y)`
+    -> `arctan2(y, x)` (NumPy's and math's arctan2 take y first)."""
+    def pair(text):
+        found = re.search(r"arctan2?\(\s*(\w+)[^,()]*,\s*(\w+)", text)
+        return found.groups() if found else None
+    if fix.operator not in _EXCHANGES or len(fix.changes) != 1:
+        return False
+    before, after = pair(fix.changes[0][1]), pair(fix.changes[0][2])
+    return before is not None and after is not None and after == before[::-1] \
+        and after[0].lower() in _Y_NAMES and after[1].lower() in _X_NAMES
+
+
 def _rows_then_columns(names) -> bool:
     """Whether the first two names are a shape's sides in its order by their own words (`h, w`,
     `height_left, width_left`, `rows, cols`), the rest of each name alike."""
@@ -2848,6 +2861,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # and whole(ty):` --, the step was meant, and its test is the slip; it is tried first, on the block's line)
     tests_made = [pair for pair in fixes if pair[1].operator == "twin_test"]
     fixes = halves_made or tests_made or blocks or fixes
+    # (and an angle's arguments put in arctan2's order, y first -- `np.arctan2(x, y)` -> `np.arctan2(y, x)` --
+    # told alone: the exchanges that mend alike downstream, a cos and a sin swapped, compensate for it)
+    fixes = [pair for pair in fixes if _arctan2_ordered(pair[1])] or fixes
     passing = passing_functions(trial)
     fixes = [pair for pair in fixes if not student.sharing(pair[1].where, function) & passing]
     if fixes:
