@@ -1907,7 +1907,7 @@ def _arctan2_ordered(fix: "Fix") -> bool:
     """Whether the change exchanges arctan2's two arguments into its order by their names: `arctan2(x, y)`
     -> `arctan2(y, x)` (NumPy's and math's arctan2 take y first)."""
     def pair(text):
-        found = re.search(r"arctan2?\(\s*(\w+)[^,()]*,\s*(\w+)", text)
+        found = re.search(r"\b(?:arctan2|atan2)\(\s*(\w+)[^,()]*,\s*(\w+)", text)
         return found.groups() if found else None
     if fix.operator not in _EXCHANGES or len(fix.changes) != 1:
         return False
