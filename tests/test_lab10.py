@@ -4,10 +4,16 @@ import numpy as np
 import pytest
 
 from autograder.engine.runner import grade
-from autograder.labs.mistakes.lab10 import MISTAKES
-from conftest import assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
+from autograder.labs.mistakes.lab10 import ADVICE, MISTAKES
+from conftest import assert_advice_case, assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results, mutant
 
 MODULE = "lab10_camera2"
+
+
+@pytest.mark.parametrize("name", sorted(ADVICE))
+@pytest.mark.xdist_group("lab10")
+def test_convention_is_advice_not_points(name):
+    assert_advice_case(MODULE, *ADVICE[name])
 
 
 def test_reference_scores_full_marks(reference_result):

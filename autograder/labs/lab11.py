@@ -1873,28 +1873,27 @@ def pipeline_shapes(t):
     grey = dataclasses.replace(pair, img1=cv2.cvtColor(pair.img1, cv2.COLOR_BGR2GRAY),
                                img2=cv2.cvtColor(pair.img2, cv2.COLOR_BGR2GRAY))
     _, grey_pts1, _, _ = _reconstructed_in_another_form(
-        t, grey, "grey img1, grey img2", "The same pair in colour (BGR) passed. ",
-        "Images are grey (H, W) or BGR (H, W, 3), as the API's conventions say: take either (convert to grey "
-        "only a colour image).")
+        t, grey, "grey img1, grey img2", "The same pair in colour (BGR) passed. " + measured(
+            "Images are grey (H, W) or BGR (H, W, 3), as the API's conventions say: take either (convert to grey "
+            "only a colour image)."))
     for mixed, said in ((dataclasses.replace(pair, img2=grey.img2), "BGR img1, grey img2"),
                         (dataclasses.replace(pair, img1=grey.img1), "grey img1, BGR img2")):
         _reconstructed_in_another_form(
-            t, mixed, said, "The same pair with both images in colour, and with both grey, passed. ",
-            "Each image is grey (H, W) or BGR (H, W, 3) on its own, as the API's conventions say: decide for "
-            "each image from its own shape.")
+            t, mixed, said, "The same pair with both images in colour, and with both grey, passed. " + measured(
+                "Each image is grey (H, W) or BGR (H, W, 3) on its own, as the API's conventions say: decide for "
+                "each image from its own shape."))
     return passed(f"{len(pts1)} matches ({len(grey_pts1)} on the grey pair; a mixed pair both ways round)")
 
 
-def _reconstructed_in_another_form(t: Trial, pair, said: str, passed_before: str, rule: str):
+def _reconstructed_in_another_form(t: Trial, pair, said: str, why: str):
     """The pipeline's answer on ``pair`` (images given otherwise than the pair that passed): an exception
-    there is told as the form's, with the API's rule."""
+    there is told as the form's, with ``why`` (what passed, and the API's rule)."""
     try:
         return call_reconstruction(t, pair)
     except StudentFailure as failure:
         if failure.outcome.kind != "exception":
             raise
-        raise StudentFailure(failure.outcome, f"two_view_reconstruction({said}, K): {failure.message}\n"
-                             + passed_before + measured(rule)) from None
+        raise StudentFailure(failure.outcome, f"two_view_reconstruction({said}, K): {failure.message}\n" + why) from None
 
 
 @ex6.check("two_view_reconstruction: F agrees with the true epipolar geometry", points=3,

@@ -1063,3 +1063,21 @@ MISTAKES = {
 
 # every exercise has at least five cases (ext1's undistortion since its new camera matrix and channels)
 FEWER_MISTAKES: dict = {}
+
+
+# Conventions the API leaves open: advice (0 points), never a lost point.
+ADVICE = {
+    # the dolly's formula written inline, with no NaN where the move puts a point behind the camera
+    "dolly_zoom projecting points moved behind the camera": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            fs = f0 * distances / z0
+            frames = []
+            for f, d in zip(fs, distances):
+                Z = X[:, 2] + (d - z0)
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    frames.append(f * X[:, :2] / Z[:, None])
+            return fs, np.stack(frames)
+        """, ["frame at d = 2", "nan", "no points"]),
+}
