@@ -1542,6 +1542,19 @@ def block_size_probe(t: Trial, what: str, scene, **kwargs):
                                         "disparity map")
 
 
+def _zero_missed(got, scene, far) -> str:
+    """": the search must include d = 0 ...", where the map's disparities are of the search range and the wall at
+    infinity has none of 0 (measured: a map of costs, or of values past max_disparity, has another cause; a wall
+    with zeros here and there was searched at 0)."""
+    got = np.asarray(got, float)
+    finite = got[np.isfinite(got)]
+    wall = got[far]
+    if finite.size and finite.min() >= 0 and finite.max() <= scene.max_disparity + 0.5 \
+            and not np.any(np.abs(wall[np.isfinite(wall)]) < 0.5):
+        return measured(": none of the wall's disparities is 0 -- the search must include d = 0 (d = 0..max_disparity)")
+    return ""
+
+
 def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, again=None, show=True):
     """Judge an SSD disparity map against the legitimate matchers' rates on ``scene``.
 
@@ -1563,8 +1576,7 @@ def judge_block_matching(t: Trial, what: str, got, scene, figures: dict, *, agai
             name_matching_mistake(t, what, got, scene, scene.judged, mistakes)
             t.fail(f"{what}: the wall at infinity (true disparity {scene.judged[far].max():.2g} px, "
                    f"i.e. d = 0) gets a disparity of 1 or more at {wrong:.0%} of its pixels "
-                   f"(legitimate matchers: at most {figures['far_legitimate']:.0%}): the search "
-                   "must include d = 0 (d = 0..max_disparity).")
+                   f"(legitimate matchers: at most {figures['far_legitimate']:.0%})" + _zero_missed(got, scene, far) + ".")
     # The pixels at the top of the range are judged apart (cv2.StereoBM's recipe leaves half
     # of them invalid), once the rest of the map is right: a wrong map gets its own diagnosis.
     verdict = judge_disparity(t, what, got, scene, figures["reference"], again=again, show=show,
@@ -1634,8 +1646,7 @@ def judge_range_ends(t: Trial, what: str, got, scene, reference: dict, show=True
             show_disparity(t, f"{what} on {scene.name}", scene, got)
         t.fail(f"{what}: the wall at infinity (true disparity {scene.judged[far].max():.2g} px, i.e. d = 0) "
                f"gets a disparity of 1 or more at {format_apart(wrong, reference['far_wrong'] + FAR_SLACK, 2, True)} "
-               f"of its pixels (the reference: {reference['far_wrong']:.0%}): the search must include d = 0 "
-               "(d = 0..max_disparity).")
+               f"of its pixels (the reference: {reference['far_wrong']:.0%})" + _zero_missed(got, scene, far) + ".")
     judge_top_of_range(t, what, got, scene, truth.top_of_range(scene.judged, scene.max_disparity),
                        reference["top_found"], "the reference", show=show)
 
