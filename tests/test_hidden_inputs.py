@@ -94,6 +94,15 @@ def test_the_vetted_scenes_are_of_hidden_checks_and_the_reference_passes_a_sampl
         assert not failing, "\n".join(failing)
 
 
+def test_a_rendered_pair_drawn_for_one_submission_is_not_kept():
+    from autograder.labs.hidden.lab11 import drawn_scene
+    from fixtures import lab11 as truth
+
+    kept = dict(truth._PAIRS)
+    pair = drawn_scene(np.random.default_rng(3))
+    assert pair.img1.shape == (240, 320, 3) and truth._PAIRS == kept
+
+
 def test_other_submissions_draw_other_hidden_inputs(reference_draws):
     first, second = reference_draws
     same = [check_id for check_id in first if first[check_id].inputs_digest == second[check_id].inputs_digest]

@@ -61,20 +61,10 @@ def test_infinite_values_on_the_camera_plane_get_the_same_tip(tmp_path):
 
 
 def test_a_dolly_that_projects_points_moved_behind_the_camera_gets_a_tip(tmp_path):
-    """The formula written inline in dolly_zoom (no NaN where the move puts a point behind the camera):
-    full marks, and the dolly's own tip names the frame and the row."""
-    result = grade(mutant(tmp_path, MODULE, """
-        def dolly_zoom(points, f0, z0, distances):
-            X, _ = _points(points)
-            distances = np.asarray(distances, dtype=np.float64).ravel()
-            fs = f0 * distances / z0
-            frames = []
-            for f, d in zip(fs, distances):
-                Z = X[:, 2] + (d - z0)
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    frames.append(f * X[:, :2] / Z[:, None])
-            return fs, np.stack(frames)
-        """), ["lab10.ext2"])
+    """The formula written inline in dolly_zoom (no NaN where the move puts a point behind the camera: the
+    advice table's case): full marks, and the dolly's own tip names the frame and the row."""
+    _, source, _ = ADVICE["dolly_zoom projecting points moved behind the camera"]
+    result = grade(mutant(tmp_path, MODULE, source), ["lab10.ext2"])
     [exercise] = result.exercises
     assert exercise.score == exercise.max_score
     assert_advised(result, "lab10.ext2", "frame at d = 2", "rows [1]", "nan")

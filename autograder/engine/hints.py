@@ -832,10 +832,14 @@ def code_of(t) -> Code:
     """The code of the module a trial's check grades, as the sandbox holds it (the file the
     worker imported; a notebook already converted); :data:`NO_CODE` without one."""
     folder = getattr(getattr(t, "sandbox", None), "submission_dir", None)   # a stand-in trial has none
-    if folder is None:
-        return NO_CODE
+    return NO_CODE if folder is None else module_code(folder, t.lab.module)
+
+
+def module_code(folder, module: str) -> Code:
+    """The code of ``module`` in the submission folder ``folder`` (read once per version of the file);
+    :data:`NO_CODE` where there is none."""
     try:
-        path = Path(folder) / f"{t.lab.module}.py"
+        path = Path(folder) / f"{module}.py"
         stat = path.stat()
     except (OSError, TypeError, ValueError):
         return NO_CODE

@@ -280,8 +280,6 @@ def _merge_hidden(public: ExerciseResult, hidden: ExerciseResult, order: dict[st
     in-place advice included, which students see only with the hidden checks."""
     for check in hidden.checks:
         check.hidden = True
-    if any(c.score < c.max_score for c in hidden.checks):   # (the advice is for functions that pass every check)
-        public.checks = [c for c in public.checks if c.name != UNUSED_VALUE_ADVICE]
     public.checks = sorted(public.checks + hidden.checks, key=lambda c: order.get(c.name, len(order)))
     graded = [c for c in public.checks if c.max_score > 0]
     if graded and all(c.status == NOT_IMPLEMENTED for c in graded):
@@ -409,7 +407,8 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
     if modified:
         out.checks.append(_in_place_advice(modified))
     unused = _unused_value_advice(sandbox, exercise, out.checks) if any(not c.hidden for c in checks) else None
-    if unused is not None:   # (told once, in the public phase: taken back there if a hidden check lost points)
+    if unused is not None:   # (told once, in the public phase, from the public checks alone: what the hidden checks
+        #                          found must not show in it before they are released)
         out.checks.append(unused)
     return out
 
@@ -418,20 +417,17 @@ UNUSED_VALUE_ADVICE = "every value computed is used"
 
 
 def _unused_value_advice(sandbox, exercise: Exercise, results) -> CheckResult | None:
-    """The engine's own advice where every graded check of the exercise passed: a value one of its functions
+    """The engine's own advice where every public graded check of the exercise passed: a value one of its functions
     computes and never reads (sub-pixel corners refined, then the raw ones calibrated). The failing checks
     say it themselves (:func:`_named_by_unused_parameter`); here it costs nothing, and says what the checks
     could not tell (a step the sheet does not ask for, begun and not finished)."""
-    from types import SimpleNamespace
-
     from . import ignored
-    from .hints import code_of
+    from .hints import module_code
 
-    graded = [r for r in results if r.max_score > 0]
+    graded = [r for r in results if r.max_score > 0 and not r.hidden]
     if not graded or any(r.score < r.max_score for r in graded):
         return None
-    found = ignored.computed_unused(code_of(SimpleNamespace(sandbox=sandbox, lab=exercise.lab)),
-                                    list(exercise.signatures))
+    found = ignored.computed_unused(module_code(sandbox.submission_dir, exercise.lab.module), list(exercise.signatures))
     if found is None:
         return None
     return CheckResult(UNUSED_VALUE_ADVICE, 0.0, 0.0, ADVICE, ignored.unused_value_sentence(*found))

@@ -868,10 +868,11 @@ PRINCIPAL_AXIS = "the principal axis (m3, det(M) m3) returned for the camera cen
 
 
 def along(vector, direction) -> bool:
-    """Whether ``vector`` (not 0) lies along ``direction``, either way (to within rounding)."""
+    """Whether ``vector`` (not 0) lies along ``direction``, either way (to within float32 rounding: an
+    answer computed in single precision is judged as one in double)."""
     vector, direction = np.asarray(vector, float), np.asarray(direction, float)
     norms = np.linalg.norm(vector) * np.linalg.norm(direction)
-    return bool(norms > 0 and abs(abs(float(vector @ direction)) / norms - 1.0) <= 1e-9)
+    return bool(norms > 0 and abs(abs(float(vector @ direction)) / norms - 1.0) <= 1e-6)
 
 
 def judge_center(t: Trial, P, R, tv):

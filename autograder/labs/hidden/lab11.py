@@ -138,9 +138,7 @@ def _well_posed(pair) -> bool:
 def drawn_scene(rng):
     """A rendered pair drawn from ``rng`` on which the recipe is well posed (see :data:`ROOM`)."""
     for _ in range(SCENE_DRAWS):
-        scene = seed(rng)
-        pair = truth.rendered_pair(seed=scene)
-        truth._PAIRS.pop((scene, 320, 240, 7.0), None)   # drawn for this submission only: not kept in memory
+        pair = truth.rendered_pair(seed=seed(rng), keep=False)   # (drawn for this submission only)
         if _well_posed(pair):
             break
     return pair
