@@ -301,6 +301,19 @@ MATCHING = """
     def stereo_bm_rounded(left, right, max_disparity=20):
         matcher = cv2.StereoBM_create(numDisparities=16 * ((max_disparity + 15) // 16), blockSize=9)
         return matcher.compute(left, right)
+
+    def detect_mean(image, other=None):
+        grey = image.mean(axis=2) if image.ndim == 3 else image
+        keypoints, descriptors = cv2.SIFT_create().detectAndCompute(grey, None)
+        return keypoints, descriptors
+
+    def detect_weighted(image, other=None):
+        grey = image @ [0.114, 0.587, 0.299]
+        return cv2.SIFT_create().detectAndCompute(grey, None)
+
+    def detect_mean_converted(image, other=None):
+        grey = image.mean(axis=2).astype(np.uint8)
+        return cv2.SIFT_create().detectAndCompute(grey, None)
 """
 OPENCV_NAMED = {
     "a KD-tree index for ORB's descriptors": (
@@ -314,6 +327,10 @@ OPENCV_NAMED = {
         [("shear", 30)], REMAP_FLOAT64, REMAP_TYPES, ("`xs - s * ys` and `ys`", ".astype(np.float32)")),
     "a detector given an image the code divided": (
         [("detect", 34)], DETECT_ON_FLOAT, DETECT_FLOAT, ("a float array", "line 33")),
+    "a detector given the mean of the colour channels": (
+        [("detect_mean", 67)], DETECT_ON_FLOAT, DETECT_FLOAT, ("`image.mean(axis=2)`, line 66",)),
+    "a detector given a grey image weighted by float numbers": (
+        [("detect_weighted", 72)], DETECT_ON_FLOAT, DETECT_FLOAT, ("`image @ [0.114, 0.587, 0.299]`, line 71",)),
     "a KD-tree index and uint8 descriptors, no detector in sight": (
         [("kd_tree", 53)], KD_ON_BINARY, FLANN_KDTREE_BINARY, ("binary descriptors. Match",)),
     "StereoBM given max_disparity + 1 disparities": (
@@ -328,6 +345,7 @@ OPENCV_NOT_NAMED = {
     "remap given one map": ([("one_map", 40)], REMAP_FLOAT64),
     "StereoBM's error where the code rounds to a multiple of 16": ([("stereo_bm_rounded", 63)], NUM_DISPARITIES),
     "a detector given the caller's image": ([("detect_given", 43)], DETECT_ON_FLOAT),
+    "a detector given a mean converted to uint8": ([("detect_mean_converted", 76)], DETECT_ON_FLOAT),
     "FLANN's float32 error where the code builds a KD-tree": ([("kd_tree", 53)], LSH_ON_FLOAT),
     "the one-neighbour assertion where the code builds no cross-check": ([("kd_tree", 53)], ONE_NEIGHBOUR),
     "the one-neighbour assertion where one neighbour is asked (with a mask)": (

@@ -261,25 +261,49 @@ def _remap(fn, line: int) -> Form | None:
         "or np.arange of whole numbers int64)"), REMAP_TYPES)
 
 
-_FLOAT_CONVERSIONS = ("astype", "float32", "float64", "asarray", "array")
+_FLOAT_REDUCTIONS = ("mean", "average", "std", "var")   # (of uint8 pixels: float64)
 
 
-def _float_made(node) -> bool:
-    """``x.astype(np.float32)``, ``np.float64(x)``, ``np.asarray(x, dtype=float)``, ``x / 255`` (a true
-    division is float whatever it divides), or arithmetic on one of them: an array made float."""
+def _float_made(node) -> ast.expr | None:
+    """The part of ``node`` that makes an array float, or None: ``x.astype(np.float32)``,
+    ``np.float64(x)``, ``np.asarray(x, dtype=float)``, ``x / 255`` (a true division is float whatever it
+    divides), a mean of pixels (``img.mean(axis=2)``), arithmetic with a float number or weights
+    (``img @ [0.114, 0.587, 0.299]``), arithmetic on one of them, or either branch of a conditional."""
+    if isinstance(node, ast.IfExp):
+        return _float_made(node.body) or _float_made(node.orelse)
     if isinstance(node, ast.BinOp):
-        return isinstance(node.op, ast.Div) or _float_made(node.left) or _float_made(node.right)
+        if isinstance(node.op, ast.Div) or _float_numbers(node.left) or _float_numbers(node.right):
+            return node
+        return node if _float_made(node.left) or _float_made(node.right) else None
     if not isinstance(node, ast.Call):
-        return False
+        return None
     last = _path(node.func).rpartition(".")[2]
     words = [ast.unparse(a) for a in node.args[1:] if last in ("asarray", "array")] + \
         [ast.unparse(k.value) for k in node.keywords if k.arg == "dtype"] + \
         [ast.unparse(a) for a in node.args if last == "astype"]
-    return last in ("float32", "float64") or any(w.endswith(("float", "float32", "float64")) for w in words)
+    if last == "astype" or any(k.arg == "dtype" for k in node.keywords):
+        # (the type written decides: `.astype(np.uint8)` after a mean makes it uint8 again)
+        return node if any(w.endswith(("float", "float32", "float64")) for w in words) else None
+    if last in ("float32", "float64") or any(w.endswith(("float", "float32", "float64")) for w in words) \
+            or last in _FLOAT_REDUCTIONS or (last in ("dot", "matmul", "tensordot")
+                                             and any(_float_numbers(a) for a in node.args)):
+        return node
+    return None
+
+
+def _float_numbers(node) -> bool:
+    """A float number, or a list or tuple of numbers with a float among them (weights)."""
+    if isinstance(node, ast.Constant):
+        return isinstance(node.value, float)
+    if isinstance(node, (ast.List, ast.Tuple)):
+        return any(_float_numbers(e) for e in node.elts) \
+            and all(isinstance(e, ast.Constant) or _float_numbers(e) for e in node.elts)
+    return False
 
 
 def _detect_float(fn, line: int, method: str) -> Form | None:
-    """A detector given an image the code itself makes float (``grey.astype(np.float32)``)."""
+    """A detector given an image the code itself makes float (``grey.astype(np.float32)``,
+    ``img.mean(axis=2)``)."""
     calls = [n for n in _own_nodes(fn) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
              and n.func.attr == method and n.lineno <= line <= n.end_lineno and n.args]
     if len(calls) != 1:
@@ -290,7 +314,8 @@ def _detect_float(fn, line: int, method: str) -> Form | None:
         values = [n.value for n in _own_nodes(fn) if isinstance(n, ast.Assign) and n.lineno < line
                   and any(isinstance(t, ast.Name) and t.id == image.id for t in n.targets)]
         made = values[-1] if len(values) == 1 else None
-    if made is None or not _float_made(made):
+    made = None if made is None else _float_made(made)
+    if made is None:
         return None
     return Form(from_code(
         f"your code makes the image it gives {method} a float array (`{_short(made)}`, line {made.lineno}), and "
