@@ -2838,6 +2838,33 @@ def test_a_function_changed_for_its_opposite_keeps_its_arguments():
     assert ("(best, lit, max(1, 2))", "(best, lit, min(1, 2))") in changes, changes
 
 
+def test_a_bound_over_two_values_is_changed_for_either_value_and_one_side_kept_twice_is_one_slip():
+    """`max(reference.shape[0], moving.shape[0])` where the reference's own height belongs (a canvas sized
+    by the larger image): each argument alone is a change tried, and keeping the first side at the height's
+    line and at the width's is the same slip made twice (a pair the search tries first)."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(reference, moving, scores):
+            height = max(reference.shape[0], moving.shape[0])
+            width = max(reference.shape[1], moving.shape[1])
+            depth = np.maximum(reference, 1.0)
+            return height, width, depth, max(scores, key=len)
+    """)
+    changes = _shown_changes(source, "one_of_two")
+    assert ("max(reference.shape[0], moving.shape[0])", "reference.shape[0]") in changes, changes
+    assert ("max(reference.shape[0], moving.shape[0])", "moving.shape[0]") in changes, changes
+    assert ("np.maximum(reference, 1.0)", "reference") in changes, changes
+    assert not any("scores" in before for before, _ in changes), changes   # (one argument: no bound over two)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    slips = {student.fix(m).changes[0][1:]: student.slip(m) for m in student.mutants("graded")
+             if m.operator == "one_of_two"}
+    assert slips[("max(reference.shape[0], moving.shape[0])", "reference.shape[0]")] \
+        == slips[("max(reference.shape[1], moving.shape[1])", "reference.shape[1]")]
+    assert slips[("max(reference.shape[0], moving.shape[0])", "reference.shape[0]")] \
+        != slips[("max(reference.shape[0], moving.shape[0])", "moving.shape[0]")]
+
+
 def test_a_conjugation_turned_round_is_told_as_its_outer_factors_exchanged_not_as_a_passing_helpers_slip(tmp_path):
     """rotate as T(-c) R T(c) where T(c) R T(-c) belongs: the reference's rotate with rotation_matrix's
     subtraction swapped answers alike, but the student's rotation_matrix passes its own checks -- the

@@ -202,6 +202,7 @@ OPERATORS = {
     "convert_first": ("convert", "uint8", "wrap", "before"),   # (a - b).astype(float) -> a.astype(float) - b
     "precedence": ("bracket", "parenthes", "precedence", "&", "|"),   # d > 0 & m -> (d > 0) & m
     "drop_term": ("term", "added", "subtracted", "extra"),   # Z + f -> Z: a term that does not belong
+    "one_of_two": ("larger", "smaller", "max", "min", "both", "either"),   # max(h1, h2) -> h1: one value, not the larger
     "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
@@ -1476,7 +1477,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "midrange", "reverse_back", "drop_reversal", "loop_order",
+                                              "drop_term", "one_of_two", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant", "colour_scale", "aligned")},
@@ -3314,6 +3315,12 @@ def _student_changes(node, parent, parents, words):
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) \
             and not isinstance(node.right, ast.Constant) and not isinstance(parent, ast.Subscript):
         yield "drop_term", ast.unparse(node.left), ""   # `X[:, 2] + f` where `X[:, 2]` belongs (an extra term)
+    if isinstance(node, ast.Call) and _dotted(node.func) in _EXTREMES and len(node.args) == 2 and not node.keywords \
+            and not any(isinstance(a, ast.Starred) for a in node.args):
+        # (`max(reference.shape[0], moving.shape[0])` where the reference's own size belongs: a bound taken
+        # over a value that has no part in it)
+        for argument in node.args:
+            yield "one_of_two", ast.unparse(argument), ""
     if isinstance(node, ast.Expr):
         yield from _discarded_result(node)
     if isinstance(node, ast.AugAssign) and isinstance(node.op, (ast.Add, ast.Sub)):
@@ -6185,6 +6192,7 @@ def _call_changes(node: ast.Call, words, what, parents):
         yield "minmax", other, f"{_OPPOSITES[short]}() is taken where {short}() belongs" + (f" (of {on})" if on else "")
 
 
+_EXTREMES = {"max", "min", "np.maximum", "np.minimum", "np.fmax", "np.fmin", "numpy.maximum", "numpy.minimum"}
 _FLOAT_TYPES = {"float", "np.float32", "np.float64", "np.double", "numpy.float32", "numpy.float64"}
 
 

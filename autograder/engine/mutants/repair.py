@@ -1264,6 +1264,10 @@ class _Student:
             # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
             # by the third: the change is written out whole, alike in kind only)
             return repr(operator)
+        if operator == "one_of_two" and isinstance(old, ast.Call):
+            # (the same side kept at two places: `max(h1, h2)` -> `h1` and `max(w1, w2)` -> `w1`)
+            return repr((operator, _dotted(old.func), [ast.unparse(a) for a in old.args].index(payload)
+                         if payload in [ast.unparse(a) for a in old.args] else payload))
         if operator == "drop_statement" and old is not None:
             # (a statement taken out at two places is one slip only where the two are written alike, names
             # apart: `x /= 2` and `y /= 2`; the two halves of a normalisation -- `T[:-1, :-1] *= s` and
