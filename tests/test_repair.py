@@ -2865,6 +2865,25 @@ def test_a_bound_over_two_values_is_changed_for_either_value_and_one_side_kept_t
         != slips[("max(reference.shape[0], moving.shape[0])", "moving.shape[0]")]
 
 
+def test_a_pixel_centred_on_the_principal_point_is_given_the_focal_lengths_division_it_lacks():
+    """Normalised coordinates made halfway (K^-1 is a shift by the principal point AND a division by the focal
+    length): `pts - K[:2, 2]` -> `(pts - K[:2, 2]) @ np.linalg.inv(K[:2, :2]).T`, `u - K[0, 2]` -> `/ K[0, 0]`;
+    a coordinate divided already is left as it is."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(pts, K, u, v):
+            xy = pts - K[:2, 2]
+            x = u - K[0, 2]
+            y = (v - K[1, 2]) / K[1, 1]
+            return xy, x, y
+    """)
+    changes = _shown_changes(source, "focal_left_out")
+    assert ("pts - K[:2, 2]", "(pts - K[:2, 2]) @ np.linalg.inv(K[:2, :2]).T") in changes, changes
+    assert ("x = u - K[0, 2]", "x = (u - K[0, 2]) / K[0, 0]") in changes, changes   # (shown as the whole short line)
+    assert not any("v -" in before for before, _ in changes), changes
+
+
 def test_a_conjugation_turned_round_is_told_as_its_outer_factors_exchanged_not_as_a_passing_helpers_slip(tmp_path):
     """rotate as T(-c) R T(c) where T(c) R T(-c) belongs: the reference's rotate with rotation_matrix's
     subtraction swapped answers alike, but the student's rotation_matrix passes its own checks -- the

@@ -203,6 +203,7 @@ OPERATORS = {
     "precedence": ("bracket", "parenthes", "precedence", "&", "|"),   # d > 0 & m -> (d > 0) & m
     "drop_term": ("term", "added", "subtracted", "extra"),   # Z + f -> Z: a term that does not belong
     "one_of_two": ("larger", "smaller", "max", "min", "both", "either"),   # max(h1, h2) -> h1: one value, not the larger
+    "focal_left_out": ("focal", "principal point", "normalis", "k^-1", "inv(k"),   # x - K[0, 2] -> (x - K[0, 2]) / K[0, 0]
     "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
     "simultaneous": ("together", "old value", "updated", "before"),   # x = f(x, y); y = g(x, y) -> x, y = ...
@@ -1477,7 +1478,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "one_of_two", "midrange", "reverse_back", "drop_reversal", "loop_order",
+                                              "drop_term", "one_of_two", "focal_left_out", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant", "colour_scale", "aligned")},
@@ -3315,6 +3316,7 @@ def _student_changes(node, parent, parents, words):
     if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)) \
             and not isinstance(node.right, ast.Constant) and not isinstance(parent, ast.Subscript):
         yield "drop_term", ast.unparse(node.left), ""   # `X[:, 2] + f` where `X[:, 2]` belongs (an extra term)
+    yield from _focal_left_out(node, parent)
     if isinstance(node, ast.Call) and _dotted(node.func) in _EXTREMES and len(node.args) == 2 and not node.keywords \
             and not any(isinstance(a, ast.Starred) for a in node.args):
         # (`max(reference.shape[0], moving.shape[0])` where the reference's own size belongs: a bound taken
@@ -6190,6 +6192,22 @@ def _call_changes(node: ast.Call, words, what, parents):
         other = dotted[: -len(short)] + _OPPOSITES[short]
         on = what(node.func.value)
         yield "minmax", other, f"{_OPPOSITES[short]}() is taken where {short}() belongs" + (f" (of {on})" if on else "")
+
+
+def _focal_left_out(node, parent):
+    """A pixel centred on a camera matrix's principal point and left in pixels, where normalised coordinates
+    (K^-1 applied) belong: `pts - K[:2, 2]` -> `(pts - K[:2, 2]) @ np.linalg.inv(K[:2, :2]).T`, `u - K[0, 2]`
+    -> `(u - K[0, 2]) / K[0, 0]` (half of K^-1: the shift without the division by the focal length)."""
+    if not (isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) and isinstance(node.right, ast.Subscript)
+            and isinstance(node.right.value, (ast.Name, ast.Attribute))):
+        return
+    if isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Div, ast.MatMult)) and parent.left is node:
+        return   # (divided or mapped already: `(u - K[0, 2]) / K[0, 0]`)
+    matrix, index = ast.unparse(node.right.value), ast.unparse(node.right.slice).strip("()")
+    if index in (":2, 2", "0:2, 2"):
+        yield "focal_left_out", f"({ast.unparse(node)}) @ np.linalg.inv({matrix}[:2, :2]).T", ""
+    elif index in ("0, 2", "1, 2"):
+        yield "focal_left_out", f"({ast.unparse(node)}) / {matrix}[{index[0]}, {index[0]}]", ""
 
 
 _EXTREMES = {"max", "min", "np.maximum", "np.minimum", "np.fmax", "np.fmin", "numpy.maximum", "numpy.minimum"}
