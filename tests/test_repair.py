@@ -2884,6 +2884,24 @@ def test_a_pixel_centred_on_the_principal_point_is_given_the_focal_lengths_divis
     assert not any("v -" in before for before, _ in changes), changes
 
 
+def test_a_vector_of_two_plain_values_is_turned_a_quarter_either_way():
+    """A line's normal walked along as its direction: `np.array([a, b])` -> `[-b, a]` or `[b, -a]` (a negated
+    item written back without its sign); a pair computed in place (`(w - 1, h)`) is no such vector."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(a, b, line, w, h):
+            direction = np.array([a, b])
+            normal = (-line[1], line[0])
+            return direction, normal, (w - 1, h)
+    """)
+    changes = _shown_changes(source, "perpendicular")
+    assert ("np.array([a, b])", "np.array([-b, a])") in changes and ("np.array([a, b])", "np.array([b, -a])") in changes
+    assert ("(-line[1], line[0])", "(-line[0], -line[1])") in changes, changes
+    assert ("(-line[1], line[0])", "(line[0], line[1])") in changes, changes
+    assert not any("w - 1" in before for before, _ in changes), changes
+
+
 def test_a_conjugation_turned_round_is_told_as_its_outer_factors_exchanged_not_as_a_passing_helpers_slip(tmp_path):
     """rotate as T(-c) R T(c) where T(c) R T(-c) belongs: the reference's rotate with rotation_matrix's
     subtraction swapped answers alike, but the student's rotation_matrix passes its own checks -- the

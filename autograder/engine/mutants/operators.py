@@ -203,6 +203,7 @@ OPERATORS = {
     "precedence": ("bracket", "parenthes", "precedence", "&", "|"),   # d > 0 & m -> (d > 0) & m
     "drop_term": ("term", "added", "subtracted", "extra"),   # Z + f -> Z: a term that does not belong
     "one_of_two": ("larger", "smaller", "max", "min", "both", "either"),   # max(h1, h2) -> h1: one value, not the larger
+    "perpendicular": ("perpendicular", "normal", "direction", "90", "quarter turn"),   # (a, b) -> (-b, a)
     "focal_left_out": ("focal", "principal point", "normalis", "k^-1", "inv(k"),   # x - K[0, 2] -> (x - K[0, 2]) / K[0, 0]
     "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
@@ -1478,7 +1479,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "one_of_two", "focal_left_out", "midrange", "reverse_back", "drop_reversal", "loop_order",
+                                              "drop_term", "one_of_two", "focal_left_out", "perpendicular", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant", "colour_scale", "aligned")},
@@ -3317,6 +3318,7 @@ def _student_changes(node, parent, parents, words):
             and not isinstance(node.right, ast.Constant) and not isinstance(parent, ast.Subscript):
         yield "drop_term", ast.unparse(node.left), ""   # `X[:, 2] + f` where `X[:, 2]` belongs (an extra term)
     yield from _focal_left_out(node, parent)
+    yield from _perpendicular(node)
     if isinstance(node, ast.Call) and _dotted(node.func) in _EXTREMES and len(node.args) == 2 and not node.keywords \
             and not any(isinstance(a, ast.Starred) for a in node.args):
         # (`max(reference.shape[0], moving.shape[0])` where the reference's own size belongs: a bound taken
@@ -6192,6 +6194,24 @@ def _call_changes(node: ast.Call, words, what, parents):
         other = dotted[: -len(short)] + _OPPOSITES[short]
         on = what(node.func.value)
         yield "minmax", other, f"{_OPPOSITES[short]}() is taken where {short}() belongs" + (f" (of {on})" if on else "")
+
+
+def _perpendicular(node):
+    """A 2D vector written where the one perpendicular to it belongs: a line's normal (a, b) walked along as
+    its direction -- `np.array([a, b])` -> `np.array([-b, a])` or `[b, -a]` (a quarter turn either way).
+    Only a pair of plain values (names, entries, their negatives): a size or a point's coordinates computed
+    in place are no vector of the kind."""
+    if not (isinstance(node, (ast.List, ast.Tuple)) and isinstance(node.ctx, ast.Load) and len(node.elts) == 2):
+        return
+    plain = lambda item: isinstance(item, (ast.Name, ast.Subscript)) or (   # noqa: E731
+        isinstance(item, ast.UnaryOp) and isinstance(item.op, ast.USub) and isinstance(item.operand, (ast.Name, ast.Subscript)))
+    if not all(plain(item) for item in node.elts):
+        return
+    negated = lambda item: ast.unparse(item.operand) if isinstance(item, ast.UnaryOp) else f"-{ast.unparse(item)}"  # noqa: E731
+    first, second = (ast.unparse(item) for item in node.elts)
+    opening, closing = ("[", "]") if isinstance(node, ast.List) else ("(", ")")
+    for turned in (f"{negated(node.elts[1])}, {first}", f"{second}, {negated(node.elts[0])}"):
+        yield "perpendicular", f"{opening}{turned}{closing}", ""
 
 
 def _focal_left_out(node, parent):
