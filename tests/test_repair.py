@@ -2902,6 +2902,21 @@ def test_a_vector_of_two_plain_values_is_turned_a_quarter_either_way():
     assert not any("w - 1" in before for before, _ in changes), changes
 
 
+def test_a_dicts_entries_are_taken_in_the_order_of_their_keys():
+    """A dict filled from the middle outwards and listed as it was filled: `d.values()` -> its values by their
+    keys' order, `d.keys()` and `d.items()` sorted; a method given arguments (`d.get(k)`) is no listing."""
+    source = textwrap.dedent("""
+        def graded(to_reference, k):
+            homographies = [H for H in to_reference.values()]
+            return homographies, list(to_reference.keys()), list(to_reference.items()), to_reference.get(k)
+    """)
+    changes = _shown_changes(source, "key_order")
+    assert ("to_reference.values()", "[to_reference[k] for k in sorted(to_reference)]") in changes, changes
+    assert ("to_reference.keys()", "sorted(to_reference)") in changes, changes
+    assert ("to_reference.items()", "sorted(to_reference.items())") in changes, changes
+    assert len(changes) == 3, changes
+
+
 def test_a_conjugation_turned_round_is_told_as_its_outer_factors_exchanged_not_as_a_passing_helpers_slip(tmp_path):
     """rotate as T(-c) R T(c) where T(c) R T(-c) belongs: the reference's rotate with rotation_matrix's
     subtraction swapped answers alike, but the student's rotation_matrix passes its own checks -- the

@@ -204,6 +204,7 @@ OPERATORS = {
     "drop_term": ("term", "added", "subtracted", "extra"),   # Z + f -> Z: a term that does not belong
     "one_of_two": ("larger", "smaller", "max", "min", "both", "either"),   # max(h1, h2) -> h1: one value, not the larger
     "perpendicular": ("perpendicular", "normal", "direction", "90", "quarter turn"),   # (a, b) -> (-b, a)
+    "key_order": ("order", "insert", "key", "sorted"),   # d.values() -> [d[k] for k in sorted(d)]
     "focal_left_out": ("focal", "principal point", "normalis", "k^-1", "inv(k"),   # x - K[0, 2] -> (x - K[0, 2]) / K[0, 0]
     "other_result": ("result", "return", "mask", "index"),   # cv2.findHomography(...)[1] -> [0]   # f * b / d -> only where d > 0   # U @ np.diag(S) @ Vt -> np.diag([S[0], S[1], 0])
     "denormalise": ("normalis", "undo", "undone", "transform"),   # return F -> return T2.T @ F @ T1   # cv2.cornerSubPix(image, ...) -> its grey view   # int(x) -> int(round(x)), astype(np.uint8) -> clip   # np.argwhere(mask) -> np.argwhere(mask)[:, ::-1]
@@ -1479,7 +1480,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "one_of_two", "focal_left_out", "perpendicular", "midrange", "reverse_back", "drop_reversal", "loop_order",
+                                              "drop_term", "one_of_two", "focal_left_out", "perpendicular", "key_order", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant", "colour_scale", "aligned")},
@@ -3319,6 +3320,7 @@ def _student_changes(node, parent, parents, words):
         yield "drop_term", ast.unparse(node.left), ""   # `X[:, 2] + f` where `X[:, 2]` belongs (an extra term)
     yield from _focal_left_out(node, parent)
     yield from _perpendicular(node)
+    yield from _key_order(node)
     if isinstance(node, ast.Call) and _dotted(node.func) in _EXTREMES and len(node.args) == 2 and not node.keywords \
             and not any(isinstance(a, ast.Starred) for a in node.args):
         # (`max(reference.shape[0], moving.shape[0])` where the reference's own size belongs: a bound taken
@@ -6194,6 +6196,18 @@ def _call_changes(node: ast.Call, words, what, parents):
         other = dotted[: -len(short)] + _OPPOSITES[short]
         on = what(node.func.value)
         yield "minmax", other, f"{_OPPOSITES[short]}() is taken where {short}() belongs" + (f" (of {on})" if on else "")
+
+
+def _key_order(node):
+    """A dict's entries taken in the order they were put in, where the order of their keys belongs: values
+    filled from the middle image outwards, listed as image 0, 1, 2... -- `d.values()` -> `[d[k] for k in
+    sorted(d)]`, `d.keys()` -> `sorted(d)`, `d.items()` -> `sorted(d.items())`."""
+    if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and not node.args and not node.keywords
+            and node.func.attr in ("values", "keys", "items") and isinstance(node.func.value, (ast.Name, ast.Attribute))):
+        return
+    d = ast.unparse(node.func.value)
+    yield "key_order", {"values": f"[{d}[k] for k in sorted({d})]", "keys": f"sorted({d})",
+                        "items": f"sorted({d}.items())"}[node.func.attr], ""
 
 
 def _perpendicular(node):
