@@ -204,11 +204,37 @@ def translate_grey(t):
 # Shifts past the image's own size, either way: the content leaves the frame and the image is black (a shift
 # by slicing must stop at the border: a window of negative size is an error or an empty copy).
 BEYOND_SHIFTS = ((200, 30), (-20, -150))
+# And shifts to the frame's edge, one pixel short of the size: one column (row) of the image is left in it
+# (a shortcut that blanks the image from `width - 1` on loses it).
+EDGE_SHIFTS = ((159, 0), (0, -119))
 
 
-@ex1.check("translate by more than the image's width or height: the content leaves the frame", points=1)
+@ex1.check("translate to the frame's edge (one column or row left) and past it (the content leaves the frame)",
+           points=1)
 def translate_beyond(t):
     source = photo("coffee", (160, 120))
+    wrong = []   # (both shifts called first: a change that mends one edge and not the other is no repair)
+    for tx, ty in EDGE_SHIFTS:
+        what = f"translate(160x120 image, tx={tx}, ty={ty})"
+        got = t.expect_array(call_on(t, what, "translate", source, tx=tx, ty=ty), what, shape=source.shape,
+                             dtype=np.uint8)
+        # (a whole-pixel shift: every recipe copies the line exactly, and the rest is black fill)
+        expected = np.zeros_like(source)
+        if tx:
+            expected[:, -1], line, place = source[:, 0], got[:, -1], f"column {source.shape[1] - 1}"
+        else:
+            expected[0], line, place = source[-1], got[0], "row 0"
+        kept = expected[:, -1] if tx else expected[0]
+        if float(np.abs(line.astype(np.int16) - kept).mean()) > 1 \
+                or float(np.abs(got.astype(np.int16) - expected).mean()) > 0.5:
+            wrong.append((what, got, expected, "the first column" if tx else "the last row", place,
+                          "width" if tx else "height", not np.any(line)))
+    if wrong:
+        what, got, expected, which, place, size, black = wrong[0]
+        t.images(what, yours=got, expected=expected)
+        t.fail(measured(f"{what}: {which} of the image should be left at the frame's edge ({place}), the rest "
+                        f"black fill; {'it is black there' if black else 'it is not'} (a shift one pixel short of "
+                        f"the {size} leaves one line)."))
     for tx, ty in BEYOND_SHIFTS:
         what = f"translate(160x120 image, tx={tx}, ty={ty})"
         got = t.expect_array(call_on(t, what, "translate", source, tx=tx, ty=ty), what, shape=source.shape,

@@ -1052,7 +1052,8 @@ class _Student:
 
     def negates_a_size(self, mutant) -> bool:
         """Whether the mutant exchanges the two sides of a difference that is an output size OpenCV is given
-        (`size = (int(x1 - x0) + 1, h)` -> `int(x0 - x1) + 1`, then `cv2.warpPerspective(img, H, size)`): a
+        (`size = (int(x1 - x0) + 1, h)` -> `int(x0 - x1) + 1`, then `cv2.warpPerspective(img, H, size)`), or
+        negates a part of one (`(new_w, new_h)` -> `(-new_h, new_w)`): a
         canvas's extent made negative is no size -- OpenCV takes the input's in its place, which mends a
         canvas sized otherwise by coincidence, not by the slip."""
         defs = self._def_changed(mutant) if len(mutant.edits) == 1 else None
@@ -1066,11 +1067,13 @@ class _Student:
             assigns = isinstance(before, (ast.Assign, ast.AugAssign, ast.AnnAssign))
             sized = (assigns and bool(_bound_names(before) & sizes)) or any(
                 id(arg) in {id(n) for n in ast.walk(before)} for arg in _output_size_arguments(before))
-            return sized and any(
+            negated = lambda statement: sum(isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.USub)  # noqa: E731
+                                            for n in ast.walk(statement))
+            return sized and (negated(after) > negated(before) or any(
                 isinstance(a, ast.BinOp) and isinstance(a.op, ast.Sub) and isinstance(b, ast.BinOp)
                 and isinstance(b.op, ast.Sub) and ast.dump(a.left) == ast.dump(b.right)
                 and ast.dump(a.right) == ast.dump(b.left) and ast.dump(a.left) != ast.dump(a.right)
-                for a, b in zip(ast.walk(before), ast.walk(after)))
+                for a, b in zip(ast.walk(before), ast.walk(after))))
         return False
 
     def skips_a_right_step(self, mutant) -> bool:

@@ -683,7 +683,15 @@ MISTAKES = {
             cols = (slice(tx, None), slice(None, -tx)) if tx >= 0 else (slice(None, tx), slice(-tx, None))
             out[rows[0], cols[0]] = image[rows[1], cols[1]]
             return out
-        """, ["translate() raised valueerror", "(raised on translate(grey image, tx=45, ty=0))"]),
+        """, ["translate() raised valueerror", ", ty=0))"]),
+    "a shortcut blanking the image from a shift one pixel short of its width": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            height, width = image.shape[:2]
+            if abs(tx) >= width - 1 or abs(ty) >= height - 1:
+                return np.zeros_like(image)
+            M = np.float64([[1, 0, tx], [0, 1, ty]])
+            return cv2.warpAffine(image, M, (width, height))
+        """, ["column 159), the rest black fill; it is black there"]),
     "a grey image's default size read from the end of its shape": ("lab07.ex5", """
         def warp_affine(image, A, dsize=None):
             size = image.shape[-2::-1] if dsize is None else dsize
