@@ -184,3 +184,25 @@ def test_a_name_is_not_replaced_by_an_expression_of_values_computed_otherwise():
     tree, reference = ast.parse(student), ast.parse(WARP_REFERENCE)
     assert not any("H1, (width, height)" in apply_edits(student, m.edits)
                    for m in aligned_mutants(tree, reference, "warp_pair"))
+
+
+CLAMP_REFERENCE = '''
+import numpy as np
+
+def clamped(point, width, height):
+    limit = 4.0 * (width + height)
+    return tuple(int(round(np.clip(v, -limit, limit))) for v in point)
+'''
+
+
+def test_a_number_fixed_in_advance_where_the_counterpart_computes_it_from_the_inputs_is_a_place():
+    # (`limit = 1000.0` where the reference sizes the clamp by the image: the number is the slip, and the change
+    # writes the counterpart's expression of the parameters)
+    student = CLAMP_REFERENCE.replace("4.0 * (width + height)", "1000.0")
+    tree, reference = ast.parse(student), ast.parse(CLAMP_REFERENCE)
+    made = [apply_edits(student, m.edits) for m in aligned_mutants(tree, reference, "clamped")]
+    assert any("limit = 4.0 * (width + height)" in text for text in made), made
+    # (an expression that calls something, or reads a value of the student's own, is no value of the inputs)
+    called = CLAMP_REFERENCE.replace("4.0 * (width + height)", "4.0 * max(width, height)")
+    assert not any("max(width, height)" in apply_edits(student, m.edits)
+                   for m in aligned_mutants(tree, ast.parse(called), "clamped"))

@@ -154,6 +154,8 @@ def _statement_differences(mine: ast.stmt, theirs: ast.stmt, stand_ins: frozense
     if len(found) == 1 and not any(found[0][0] is part for part in _parts(mine)) \
             and _stands_in(*found[0], stand_ins, inputs):
         return found   # (a part of the statement, not its whole value: `return out` is no place of `return f(...)`)
+    if len(found) == 1 and _fixed_for_computed(*found[0], inputs):
+        return found   # (`limit = 1000.0` where `limit = 4.0 * (width + height)`: a number fixed in advance)
     for a, b in found:
         if not _writable(b) or not _a_slip(a, b):
             return None
@@ -169,6 +171,16 @@ def _stands_in(mine: ast.expr, theirs: ast.expr, stand_ins: frozenset, inputs: f
     return isinstance(mine, ast.Name) and mine.id in stand_ins and not isinstance(theirs, ast.Name) \
         and not any(isinstance(node, ast.Call) for node in ast.walk(theirs)) \
         and _writable(theirs) and _names([theirs], ast.Load) <= inputs
+
+
+def _fixed_for_computed(mine: ast.expr, theirs: ast.expr, inputs: frozenset) -> bool:
+    """Whether the student's code at the one place a statement differs is a number written in advance where the
+    counterpart computes the value from the function's inputs (values alone, no call): `1000.0` for a clamp the
+    reference sizes by the image, `4.0 * (width + height)`."""
+    read = _names([theirs], ast.Load)
+    return isinstance(mine, ast.Constant) and type(mine.value) in (int, float) \
+        and not any(isinstance(node, ast.Call) for node in ast.walk(theirs)) \
+        and bool(read) and read <= inputs and _writable(theirs)
 
 
 def _writable(node: ast.expr) -> bool:
