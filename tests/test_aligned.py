@@ -206,3 +206,22 @@ def test_a_number_fixed_in_advance_where_the_counterpart_computes_it_from_the_in
     called = CLAMP_REFERENCE.replace("4.0 * (width + height)", "4.0 * max(width, height)")
     assert not any("max(width, height)" in apply_edits(student, m.edits)
                    for m in aligned_mutants(tree, ast.parse(called), "clamped"))
+
+
+COLLAPSE_REFERENCE = '''
+def collapse(bands, up):
+    result = bands[-1]
+    for band in reversed(bands[:-1]):
+        result = up(result) + band
+    return result
+'''
+
+
+@pytest.mark.parametrize("slip, fixed", [("bands[1:-1]", "bands[:-1]"), ("bands[:]", "bands[:-1]")])
+def test_a_part_one_side_leaves_out_makes_the_subscript_holding_it_the_place(slip, fixed):
+    # (a slice's bound written where the counterpart has none, or left out where it has one: the subscript is the
+    # place -- a bound of None is no expression to write, and reading it once stopped every change of the def)
+    student = COLLAPSE_REFERENCE.replace("reversed(bands[:-1])", f"reversed({slip})")
+    tree, reference = ast.parse(student), ast.parse(COLLAPSE_REFERENCE)
+    made = [apply_edits(student, m.edits) for m in aligned_mutants(tree, reference, "collapse")]
+    assert any(f"reversed({fixed})" in text for text in made), made

@@ -112,7 +112,7 @@ def _differences(mine, theirs):
         for a, b in zip(mine, theirs):
             inner = _differences(a, b)
             if inner is _WHOLE:
-                if isinstance(a, ast.expr):
+                if _placeable(a):
                     found.append((a, b))
                 else:
                     return _WHOLE
@@ -123,9 +123,11 @@ def _differences(mine, theirs):
         found = []
         for field in mine._fields:
             a, b = getattr(mine, field, None), getattr(theirs, field, None)
+            if (a is None) != (b is None):
+                return _WHOLE   # (a part one side leaves out -- a slice's bound, a default --: this node whole)
             inner = _differences(a, b)
             if inner is _WHOLE:
-                if isinstance(a, ast.expr):
+                if _placeable(a):
                     found.append((a, b))
                 else:
                     return _WHOLE   # (a name, a number, an operator, a keyword's name: this node whole)
@@ -133,6 +135,13 @@ def _differences(mine, theirs):
                 found += inner
         return found
     return [] if mine == theirs else _WHOLE
+
+
+def _placeable(node) -> bool:
+    """Whether an expression can be a place of its own: written out alone it reads back as itself (a slice,
+    `1:-1`, or the index `:, 2` holding one, cannot: the subscript holding it is the place)."""
+    return isinstance(node, ast.expr) and not isinstance(node, ast.Slice) \
+        and not (isinstance(node, ast.Tuple) and any(isinstance(item, ast.Slice) for item in node.elts))
 
 
 def _statement_differences(mine: ast.stmt, theirs: ast.stmt, stand_ins: frozenset = frozenset(),
