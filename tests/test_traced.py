@@ -678,3 +678,23 @@ def test_two_columns_joined_end_to_end_are_told_where_and_how():
             return np.hstack([x, y])
         """, "pinhole_project", (4, 2), np.array([[1.0, 2, 4], [2, 1, 5], [0, 1, 3], [1, 1, 2]]), 500.0)
     assert said is not None and "`np.hstack([x, y])`" in said and "np.column_stack" in said, said
+
+
+def test_an_in_place_operation_on_an_integer_array_names_where_the_array_was_made():
+    """`offset -= R @ centre` on a centre given as whole numbers: NumPy refuses the float result in an int64
+    array; the sentence says so from the error's dtypes and follows the copy back to where it was made."""
+    source = """
+        def rotated(angle, center=(0.0, 0.0)):
+            R = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+            centre = np.array(center)
+            offset = centre.copy()
+            offset -= R @ centre
+            return offset
+        """
+    said = raised_sentence(source, "rotated", 0.5, (10, 20))
+    assert said is not None and "`offset -= R @ centre` (line 6) writes a float64 result into `offset`, an array of " \
+        "int64" in said, said
+    assert "`centre.copy()` (line 5), a copy of `np.array(center)` (line 4)" in said, said
+    floats = raised_sentence(source.replace("offset -= R @ centre", "offset -= R @ centre + 'x'"), "rotated", 0.5,
+                             (10.0, 20.0))
+    assert floats is None or "in-place" not in floats   # (another error on the line: no dtype told)

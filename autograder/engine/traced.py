@@ -386,6 +386,8 @@ _MASK_ASSIGNMENT = re.compile(r"boolean array indexing assignment (?:requires a 
 _MASK_INDEX = re.compile(r"boolean index did not match indexed array along (?:axis|dimension) (\d+); "
                          r"(?:size of axis|dimension) is (\d+) but (?:size of )?corresponding boolean "
                          r"(?:axis|dimension) is (\d+)")
+_CAST = re.compile(r"Cannot cast ufunc '(\w+)' output from dtype\('(\w+)'\) to dtype\('(\w+)'\)")
+CAST = "an in-place operation on an integer array given a float result"
 WINDOW_CUT = "a window sliced past the image's edge (a negative start, or an end past it) is cut short"
 ASSERTION = "the code's own assert fails on this input"
 _UNPACK = re.compile(r"(?:not enough|too many) values to unpack \(expected (\d+)")
@@ -427,6 +429,9 @@ def explain_raised(code, recording: Recording, fn, line: int, message: str, fram
     found = _MASK_INDEX.search(message)
     if found:
         return _mask_index_named(recording, expressions, fn, line, where)
+    found = _CAST.search(message)
+    if found:
+        return _cast_named(fn, statement, found.group(2), found.group(3), where)
     found = _TOO_MANY_INDICES.search(message)
     if found:
         return _indexed_named(recording, expressions, int(found.group(1)), where, fn, statement)
@@ -711,6 +716,30 @@ def _item_named(recording, expressions, where) -> Form | None:
         return Form(f"{_quote(node.slice)} is {int(index)} in {_quote(node)} {where}: {_quote(node.value)} holds "
                     f"{size} item{'s' if size != 1 else ''}, {numbered}{wraps}", INDEX)
     return None
+
+
+def _cast_named(fn, statement, result: str, kept: str, where) -> Form | None:
+    """An in-place operation (`offset -= R @ centre`) on an array whose dtype cannot hold its result: NumPy keeps
+    the array's dtype in place and refuses to cast the float result into integers. Said from the error's own
+    dtypes, with where the array was made (the student's last assignment to it)."""
+    if not isinstance(statement, ast.AugAssign) or not isinstance(statement.target, ast.Name):
+        return None
+    name = statement.target.id
+    said = (f"{_quote(statement)} {where} writes a {result} result into `{name}`, an array of {kept}: an in-place "
+            f"operation keeps the array's dtype, and NumPy will not cast {result} values into it")
+    made = _last_given(fn, name, statement.lineno)
+    if made is not None:
+        said += f"; `{name}` comes from {_quote(made[0])} (line {made[1]})"
+        origin = made[0]
+        while isinstance(origin, ast.Call) and isinstance(origin.func, ast.Attribute) and origin.func.attr == "copy" \
+                and isinstance(origin.func.value, ast.Name):
+            # (a copy of another local: where that one was made, the dtype's source)
+            earlier = _last_given(fn, origin.func.value.id, made[1])
+            if earlier is None:
+                break
+            said += f", a copy of {_quote(earlier[0])} (line {earlier[1]})"
+            made, origin = earlier, earlier[0]
+    return Form(said + from_code(": make it a float array where it is made (`dtype=float`)"), CAST)
 
 
 def _divisor_named(recording, expressions, where) -> Form | None:

@@ -117,6 +117,17 @@ MISTAKES = {
         def shear(image, s=0.5):
             return _warp(image, shear_matrix(np.clip(s, -1.0, 1.0)))
         """, ["`np.clip(s, -1.0, 1.0)` to `s`"]),
+    "rotation_matrix computing the offset in place in the centre's own dtype": ("lab07.ex2", """
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            theta = np.deg2rad(angle_deg)
+            R = np.array([[np.cos(theta), np.sin(theta)], [-np.sin(theta), np.cos(theta)]])
+            centre = np.array(center)
+            offset = centre.copy()
+            offset -= R @ centre
+            M = np.eye(3)
+            M[:2, :2], M[:2, 2] = R, offset
+            return M
+        """, ["writes a float64 result into `offset`, an array of int64", "a copy of `np.array(center)`"]),
     "rotate about the centre of a padded square": ("lab07.ex2", """
         def rotate(image, angle_deg=45):
             height, width = image.shape[:2]
