@@ -89,7 +89,8 @@ CONVERTS_TO_RGB = (mentions("cv2.COLOR_BGR2RGB") | mentions("cv2.COLOR_RGB2BGR")
                    | expr("_[:, :, ::-1]")).saying("converts between BGR and RGB")
 guard(beginner.RGB_ONLY_TO_SHOW, ~CONVERTS_TO_RGB,
       instead="your code does not convert to RGB: it puts the channels in R, G, B order another way "
-              "(a stack or a channel index)")
+              "(a stack, a channel index, or a flip of every axis: `np.flip(image)` with no axis reverses the "
+              "channels too)")
 # The cause scale_form names, said only of code that divides somewhere (else the measured scale only).
 WRONG_COORDINATE = guard("the division uses the wrong coordinate", ~divides_by("_"),
                          instead="no division is written in your code: the answer is scaled by one over that entry")

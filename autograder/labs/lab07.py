@@ -324,14 +324,15 @@ def rotate_grey(t):
         probe=image_probe(t, "rotate"))
 
 
-@ex2.check("rotate a square image by quarter and whole turns (90, -90, 270, 0 and 360 degrees)", points=1)
+@ex2.check("rotate a square image by quarter, half and whole turns (90, -90, 180, 270, 0 and 360 degrees)", points=1)
 def rotate_square_quarter_turns(t):
     """A square image turned a quarter turn fills its frame exactly, so a shortcut through np.rot90 or
     cv2.rotate is right there -- in the direction a positive angle means (counter-clockwise on screen)
-    only; the other checks' quarter turn is of a non-square image, where no such shortcut applies. No
-    turn and a whole turn give the image back (a shortcut for half turns testing `angle % 180 == 0`
+    only; the other checks' quarter turn is of a non-square image, where no such shortcut applies. A
+    half turn is a flip of both axes (a shortcut through `np.flip(image)` flips the colour channels too).
+    No turn and a whole turn give the image back (a shortcut for half turns testing `angle % 180 == 0`
     flips them)."""
-    return judge_rotations(t, "square image", photo("astronaut", (128, 128)), (90, -90, 270, 0, 360))
+    return judge_rotations(t, "square image", photo("astronaut", (128, 128)), (90, -90, 180, 270, 0, 360))
 
 
 def judge_rotations(t: Trial, described: str, source, angles) -> Verdict:

@@ -279,7 +279,10 @@ def last_entry_zero(t):
 NEGATIVE_SCALE = "the warp depends on H's sign (-H is the same homography)"
 
 
-@ex1.check("apply_homography with -H: a homography is defined up to scale, sign included", points=1)
+SMALL_SCALE = "the warp depends on H's size (0.001 H is the same homography)"
+
+
+@ex1.check("apply_homography with -H and with 0.001 H: a homography is defined up to scale, sign included", points=1)
 def apply_homography_negative_scale(t):
     source = photo("astronaut", (240, 180))
     H = truth.corner_homography(np.random.default_rng(5), (240, 180), 0.15)
@@ -289,8 +292,8 @@ def apply_homography_negative_scale(t):
     except Fail:
         return passed(measured("wrong for H itself too: the other checks judge that"))
     try:
-        return judge_homography_warp(t, "apply_homography(image, -H)", t.call("apply_homography", source, -H),
-                                     source, H)   # (the same picture as H's: -H is the same homography)
+        verdict = judge_homography_warp(t, "apply_homography(image, -H)", t.call("apply_homography", source, -H),
+                                        source, H)   # (the same picture as H's: -H is the same homography)
     except Fail as failure:
         # (right for H, wrong for -H: only the sign differs, so the code depends on it -- every w = h31 x +
         # h32 y + h33 is negative under -H)
@@ -299,6 +302,25 @@ def apply_homography_negative_scale(t):
             "scale, sign included): under -H every third coordinate w = h31 x + h32 y + h33 is negative, so code "
             "that keeps only w > 0 (or takes the sign of w as the side of the horizon) loses the picture; test "
             "w != 0, or divide and keep what lands inside."), mistake=NEGATIVE_SCALE)
+    # (and at a small scale: right for H, wrong for 0.001 H -- an estimate's own scale, a matrix divided by its
+    # norm -- the code compares something of H's with a fixed size: its entries' or its determinant's, which
+    # scales with the cube of the scale)
+    same = ("Your apply_homography is right for H and not for 0.001 H, which is the same homography (any non-zero "
+            "scale): its answer depends on H's size, as it does where H's entries or its determinant are compared "
+            "with a fixed number (the determinant scales with the cube of the scale); judge a warp by where it "
+            "sends the points.")
+    what = "apply_homography(image, 0.001 * H)"
+    try:
+        got = t.call("apply_homography", source, 1e-3 * H)
+    except StudentFailure as failure:
+        if failure.outcome.kind != "exception":
+            raise
+        t.fail(f"{failure.message.rstrip('.')} (raised on {what}). " + measured(same), mistake=SMALL_SCALE)
+    try:
+        judge_homography_warp(t, what, got, source, H)
+    except Fail as failure:
+        t.fail(f"{failure.message} " + measured(same), mistake=SMALL_SCALE)
+    return verdict
 
 
 # ================================================================== ex2 DLT

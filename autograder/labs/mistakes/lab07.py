@@ -117,6 +117,14 @@ MISTAKES = {
         def shear(image, s=0.5):
             return _warp(image, shear_matrix(np.clip(s, -1.0, 1.0)))
         """, ["`np.clip(s, -1.0, 1.0)` to `s`"]),
+    "rotate shortcutting a half turn with np.flip of every axis": ("lab07.ex2", """
+        def rotate(image, angle_deg=45):
+            if angle_deg % 360 == 180:
+                return np.flip(image)
+            height, width = image.shape[:2]
+            return _warp(image, rotation_matrix(angle_deg, ((width - 1) / 2.0, (height - 1) / 2.0)))
+        """, ["rotate(square image, angle_deg=180) is wrong: the colour channels are reversed",
+              "a flip of every axis"]),
     "rotation_matrix computing the offset in place in the centre's own dtype": ("lab07.ex2", """
         def rotation_matrix(angle_deg, center=(0.0, 0.0)):
             theta = np.deg2rad(angle_deg)

@@ -150,6 +150,13 @@ MISTAKES = {
                 raise ValueError("need at least 4 correspondences")
             return _ransac_right(src, dst, threshold, seed)
         """, ["minimal set", "refuses them"]),
+    "apply_homography refusing a determinant np.isclose takes for 0": ("lab08.ex1", """
+        def apply_homography(image, H, dsize=None):
+            if np.isclose(np.linalg.det(H), 0.0):
+                raise ValueError("H is singular")
+            height, width = image.shape[:2]
+            return cv2.warpPerspective(image, np.asarray(H, dtype=np.float64), dsize or (width, height))
+        """, ["right for H and not for 0.001 H", "(raised on apply_homography(image, 0.001 * H))"]),
     "apply_homography with H transposed": ("lab08.ex1", """
         def apply_homography(image, H, dsize=None):
             h, w = image.shape[:2]
