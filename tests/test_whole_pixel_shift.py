@@ -73,3 +73,34 @@ def test_truncation_is_tried_as_the_floor_and_a_floor_is_not_floored_again():
     changed = {apply_edits(SPLIT, m.edits).splitlines()[4].strip() for m in mutants_of(SPLIT, ["translate"], phrased=False)["translate"]
                if m.operator == "function"}
     assert not any("np.floor(np.floor" in line for line in changed), changed
+
+
+def test_the_usual_places_to_look_give_way_to_a_confirmed_change_of_the_code(tmp_path):
+    """A pixel grid counted from 1 (`np.arange(1, w + 1)`): the check measures a whole pixel off and lists the
+    usual places (a border, a split shift, a grid from 1); the change confirmed at the student's own lines
+    takes their place -- none of them is read in the code, and beside the change they would send the student
+    elsewhere. Without a change, the list stays."""
+    import textwrap
+
+    from autograder.engine.claims import LOOK_FOR, without_where_to_look
+    from autograder.engine.runner import grade
+    from conftest import check_results, edited_reference
+
+    own = textwrap.indent(textwrap.dedent('''
+        height, width = image.shape[:2]
+        out_w, out_h = dsize if dsize is not None else (width, height)
+        inverse = cv2.invertAffineTransform(np.asarray(A, np.float64))
+        xs, ys = np.meshgrid(np.arange(1, out_w + 1, dtype=np.float64), np.arange(1, out_h + 1, dtype=np.float64))
+        map_x = (inverse[0, 0] * xs + inverse[0, 1] * ys + inverse[0, 2]).astype(np.float32)
+        map_y = (inverse[1, 0] * xs + inverse[1, 1] * ys + inverse[1, 2]).astype(np.float32)
+        return cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT)''').strip("\n"), "    ")
+    folder = edited_reference(tmp_path, "lab07_transformations", ("    return _warp(image, A, dsize)\n", own + "\n"))
+    result = grade(folder, ["lab07.ex5"], pictures="none", include_hidden=False)
+    told = [c for c in check_results(result, "lab07.ex5") if c.mistake == "the image is a whole pixel off"]
+    assert told, [c.message for c in check_results(result, "lab07.ex5")]
+    assert any("`np.arange(out_w, dtype=np.float64)`" in c.message for c in told), [c.message for c in told]
+    for check in told:
+        if "Trying small changes" in check.message:
+            assert not any(text in check.message for text in LOOK_FOR), check.message
+    advice = next(iter(LOOK_FOR))
+    assert without_where_to_look(f"measured. {advice} Trying small changes") == "measured. Trying small changes"

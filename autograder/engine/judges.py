@@ -32,7 +32,7 @@ from fixtures.images import as_homography, coverage, warp
 
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
 from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
-from .claims import calls_any, checklist, from_code, measured, seen_in_code
+from .claims import calls_any, checklist, from_code, measured, seen_in_code, where_to_look
 from .forms import (CHANNEL_COPIED, CHANNELS_FIRST, COLOURS_LOST, UNIT_RANGE_CAST, channel_copied, colours_lost, shape_form,
                     unit_range_cast)
 from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, mentions, parameter_flows,
@@ -533,10 +533,12 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
             return partial(0.5, measured(
                 f"{what}: the image content is right but a whole pixel off: it is the expected image moved by "
                 f"{_pixels(dx, 'right', 'left')}{' and ' if dx and dy else ''}{_pixels(dy, 'down', 'up')} "
-                f"({nearer:.1f} grey levels from that, {within:.1f} from the expected image at best). Where a pixel "
-                "is (its centre or its corner at (0, 0)) moves an image by half a pixel at most; look for a pixel "
-                "added or lost on the way: a border added and not taken back, a shift split into a whole part and "
-                "a remainder that do not add up."), mistake=WHOLE_PIXEL_OFF)
+                f"({nearer:.1f} grey levels from that, {within:.1f} from the expected image at best).") + " "
+                + where_to_look(measured(
+                    "Where a pixel is (its centre or its corner at (0, 0)) moves an image by half a pixel at most; "
+                    "look for a pixel added or lost on the way: a border added and not taken back, a shift split "
+                    "into a whole part and a remainder that do not add up, a pixel grid counted from 1.")),
+                mistake=WHOLE_PIXEL_OFF)
         detail = detail_kept(got, expected, inside) if _keeps_its_scale(M) else 1.0
         if detail < DETAIL_KEPT:
             return partial(0.5, measured(

@@ -1263,7 +1263,8 @@ class _Student:
                         "column_order", "grey", "whole_shape", "move_factor", "convert_first",
                         "precedence", "drop_term", "python_numbers", "middle_axis", "widen", "bracket",
                         "perspective_warp", "size_given", "x_difference", "colour_axis", "drop_w",
-                        "power_xor", "half_pixel", "swap_axes", "stack_last", "own_values", "scale_inverse"):
+                        "power_xor", "half_pixel", "swap_axes", "stack_last", "own_values", "scale_inverse",
+                        "zero_based", "focal_left_out", "key_order"):
             # (each array's own mean: `dst[0]` -> `dst_mean`, `src[0]` -> `src_mean`; each row divided
             # by the third: the change is written out whole, alike in kind only)
             return repr(operator)
@@ -4175,7 +4176,10 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
             return shown
     first, newline, rest = str(verdict.message).partition("\n")
     if by_hand:   # the check's name of the effect stays, with where it comes from in their code
-        lead = first.rstrip()
+        # (its advice on the usual places to look gives way to the place the change shows)
+        from ..claims import without_where_to_look
+
+        lead = without_where_to_look(first).rstrip()
         lead += "" if not lead or lead[-1] in ".:;!?" else "."
         # (its fixed hint gives way to a change an earlier check of the function confirmed and that mends
         # this one too: a recipe beside the change sends the student to look elsewhere -- "check that the
