@@ -22,7 +22,7 @@ from ..engine.claims import calls_any, from_code, guard, guessed, measured
 from ..engine.compare import format_arrays_apart
 from ..engine.judges import (Probe, call_probe, digits_apart, entries_misplaced, judge_matrix, judge_parameter_used, judge_warp, reads,
                       name_mistake, warp_probe)
-from ..engine.hints import Predicate, call_in_a_loop, calls, code_of, expr, mentions, uses_attr
+from ..engine.hints import Predicate, _path, call_in_a_loop, calls, code_of, expr, mentions, uses_attr
 from ..engine.registry import Lab
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
@@ -652,9 +652,42 @@ lab.forbid("affine_lstsq", "cv2.estimateAffine2D", "cv2.estimateAffinePartial2D"
 INVERSE_FITTED = "the inverse map (dst -> src) fitted by least squares, then inverted"
 
 
+# Library fits of another family of maps, whose result is no least-squares affine fit (the call's last name ->
+# what it fits)
+OTHER_MODELS = {
+    "findHomography": "a homography (a perspective map, 8 unknowns): its top two rows are no affine fit -- the "
+                      "perspective row takes its share of the residuals -- and 3 pairs, enough for an affine map, "
+                      "are too few for it",
+    "getPerspectiveTransform": "a homography through exactly 4 pairs (a perspective map, 8 unknowns), no "
+                               "least-squares affine fit of N pairs",
+    "estimateAffinePartial2D": "a similarity (a rotation, one scale and a shift: 4 unknowns), not the general "
+                               "affine map of 6",
+}
+OTHER_MODEL = "a library fit of another family of maps"
+
+
+def _other_model(t: Trial) -> str:
+    """The sentence naming a fit of another family the student's affine_lstsq calls (read in its code), or ''."""
+    for function in code_of(t).reachable(["affine_lstsq"]):
+        for node in ast.walk(function):
+            name = _path(node.func).rsplit(".", 1)[-1] if isinstance(node, ast.Call) else ""
+            if name in OTHER_MODELS:
+                return from_code(f" Your code fits {OTHER_MODELS[name]} (`cv2.{name}`, line {node.lineno}); the "
+                                 "least-squares affine map solves the sheet's 2N x 6 system of all the pairs "
+                                 "(np.linalg.lstsq).")
+    return ""
+
+
 def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
     what = f"affine_lstsq(src, dst) with N={len(src)}"
-    got = t.expect_array(t.call("affine_lstsq", src, dst), what, shape=(2, 3), kind="iuf", finite=True)
+    try:
+        answer = t.call("affine_lstsq", src, dst)
+    except StudentFailure as failure:
+        other = _other_model(t) if failure.outcome.kind == "exception" else ""
+        if not other:
+            raise
+        t.fail(f"{failure.message.rstrip('.')} (raised on {what}).{other}", mistake=OTHER_MODEL)
+    got = t.expect_array(answer, what, shape=(2, 3), kind="iuf", finite=True)
     if show:
         from ..engine.pictures import svg_points
 
@@ -687,10 +720,12 @@ def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
     cause = from_code(f" Your code fits the map exactly to a few points at a time (`{subsets[0]}` in a loop, line "
                       f"{subsets[1]}) and combines the fits: an average of exact fits is not the least-squares fit "
                       "of all the points; solve the one system of all 2N equations (np.linalg.lstsq).") if subsets else ""
+    other = "" if subsets else _other_model(t)
     t.fail(f"{what} is not the least-squares fit: it sends a source point "
            f"{digits_apart(error, tolerance)} px away from where the least-squares fit sends it "
            f"(at most {tolerance:.3g} px expected)"
-           f"{residuals}.{cause}", mistake=from_code("exact fits of a few points combined") if subsets else "")
+           f"{residuals}.{cause or other}", mistake=from_code("exact fits of a few points combined") if subsets
+           else OTHER_MODEL if other else "")
 
 
 _EXACT_FITS = ("affine_from_points", "getAffineTransform")   # three-point fits

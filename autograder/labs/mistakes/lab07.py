@@ -117,6 +117,11 @@ MISTAKES = {
         def shear(image, s=0.5):
             return _warp(image, shear_matrix(np.clip(s, -1.0, 1.0)))
         """, ["`np.clip(s, -1.0, 1.0)` to `s`"]),
+    "affine_lstsq fitting a homography and keeping its top rows": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            H, _ = cv2.findHomography(np.asarray(src, np.float64), np.asarray(dst, np.float64), 0)
+            return H[:2] / H[2, 2]
+        """, ["your code fits a homography (a perspective map, 8 unknowns)", "(`cv2.findHomography`, line"]),
     "rotate shortcutting a half turn with np.flip of every axis": ("lab07.ex2", """
         def rotate(image, angle_deg=45):
             if angle_deg % 360 == 180:
