@@ -4776,6 +4776,24 @@ def test_a_value_of_the_student_s_own_that_only_scales_or_shifts_is_made_neutral
     assert not any(before in ("pts.sum()", "k * 2") for before, _ in changes), changes
 
 
+def test_a_number_of_the_student_s_own_only_added_is_made_zero():
+    """`gap = 4` read only in sums (a separator between two pictures, a margin the API does not ask for) -> `0`;
+    a number read in a product, or read once, has no such change."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(w1, w2, x):
+            gap = 4
+            factor = 3
+            once = 7
+            width = w1 + gap + w2
+            offset = w1 + gap
+            return width, offset, factor * x, factor + x, once + x
+    """)
+    changes = _shown_changes(source, "neutral")
+    assert ("gap = 4", "gap = 0") in changes, changes
+    assert not any(before.startswith(("factor", "once")) for before, _ in changes), changes
+
+
 def test_a_name_made_and_never_read_is_tried_where_a_number_is_written_after_it():
     """`n = len(src)` never read, and a `1` in the normal matrix where the count of points belongs: `1` -> `n`;
     numbers in an index, a keyword, or before the name is made are left as they are."""

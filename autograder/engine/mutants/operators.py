@@ -2848,13 +2848,19 @@ def _neutral_value(node, parent, parents):
     `scale = r.max()` -> `scale = 1.0` where the points are divided by it, treated, and multiplied back (a model
     that holds at the coordinates as they are, not rescaled)."""
     if not (isinstance(parent, ast.Assign) and parent.value is node and len(parent.targets) == 1
-            and isinstance(parent.targets[0], ast.Name) and not isinstance(node, ast.Constant)):
+            and isinstance(parent.targets[0], ast.Name)):
         return
     name, fn = parent.targets[0].id, _def_of(node, parents)
     uses = _uses_of(fn).get(name, [])
     if len(uses) < 2 or sum(isinstance(target, ast.Name) and target.id == name
                             for n in ast.walk(fn) if isinstance(n, ast.Assign) for target in n.targets) != 1:
         return   # (a value read once, or assigned again, is a step of another kind)
+    if isinstance(node, ast.Constant):
+        # (a number of the student's own only added or subtracted wherever it is read: a margin, a gap between two
+        # pictures -- `gap = 4` -> `gap = 0`, the step the API does not take)
+        if type(node.value) in (int, float) and node.value != 0 and all(isinstance(op, (ast.Add, ast.Sub)) for op in uses):
+            yield "neutral", "0", ""
+        return
     if all(isinstance(op, (ast.Mult, ast.Div)) for op in uses):
         yield "neutral", "1.0", ""
     # (a value only added or subtracted is a centring: drop_centring takes it out, told where it is undone)
