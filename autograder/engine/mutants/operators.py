@@ -3327,7 +3327,7 @@ def _student_changes(node, parent, parents, words):
     yield from _focal_left_out(node, parent)
     yield from _perpendicular(node)
     yield from _key_order(node)
-    if isinstance(node, ast.Call) and _dotted(node.func) in _EXTREMES and len(node.args) == 2 and not node.keywords \
+    if isinstance(node, ast.Call) and _dotted(node.func) in _BOUNDS_OF_TWO and len(node.args) == 2 and not node.keywords \
             and not any(isinstance(a, ast.Starred) for a in node.args):
         # (`max(reference.shape[0], moving.shape[0])` where the reference's own size belongs: a bound taken
         # over a value that has no part in it)
@@ -6250,7 +6250,7 @@ def _focal_left_out(node, parent):
         yield "focal_left_out", f"({ast.unparse(node)}) / {matrix}[{index[0]}, {index[0]}]", ""
 
 
-_EXTREMES = {"max", "min", "np.maximum", "np.minimum", "np.fmax", "np.fmin", "numpy.maximum", "numpy.minimum"}
+_BOUNDS_OF_TWO = {"max", "min", "np.maximum", "np.minimum", "np.fmax", "np.fmin", "numpy.maximum", "numpy.minimum"}
 _FLOAT_TYPES = {"float", "np.float32", "np.float64", "np.double", "numpy.float32", "numpy.float64"}
 
 
