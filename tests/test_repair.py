@@ -2886,20 +2886,22 @@ def test_a_pixel_centred_on_the_principal_point_is_given_the_focal_lengths_divis
 
 def test_a_vector_of_two_plain_values_is_turned_a_quarter_either_way():
     """A line's normal walked along as its direction: `np.array([a, b])` -> `[-b, a]` or `[b, -a]` (a negated
-    item written back without its sign); a pair computed in place (`(w - 1, h)`) is no such vector."""
+    item written back without its sign); a pair computed in place (`(w - 1, h)`), or two values exchanged
+    (`P1, P2 = P2, P1`: matrices), is no such vector."""
     source = textwrap.dedent("""
         import numpy as np
 
-        def graded(a, b, line, w, h):
+        def graded(a, b, line, w, h, P1, P2):
             direction = np.array([a, b])
-            normal = (-line[1], line[0])
-            return direction, normal, (w - 1, h)
+            normal = [-line[1], line[0]]
+            P1, P2 = P2, P1
+            return direction, normal, (w - 1, h), P1 @ P2
     """)
     changes = _shown_changes(source, "perpendicular")
     assert ("np.array([a, b])", "np.array([-b, a])") in changes and ("np.array([a, b])", "np.array([b, -a])") in changes
-    assert ("(-line[1], line[0])", "(-line[0], -line[1])") in changes, changes
-    assert ("(-line[1], line[0])", "(line[0], line[1])") in changes, changes
-    assert not any("w - 1" in before for before, _ in changes), changes
+    assert ("[-line[1], line[0]]", "[-line[0], -line[1]]") in changes, changes
+    assert ("[-line[1], line[0]]", "[line[0], line[1]]") in changes, changes
+    assert not any("w - 1" in before or "P1" in before for before, _ in changes), changes
 
 
 def test_a_dicts_entries_are_taken_in_the_order_of_their_keys():

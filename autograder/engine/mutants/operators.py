@@ -3325,7 +3325,7 @@ def _student_changes(node, parent, parents, words):
             and not isinstance(node.right, ast.Constant) and not isinstance(parent, ast.Subscript):
         yield "drop_term", ast.unparse(node.left), ""   # `X[:, 2] + f` where `X[:, 2]` belongs (an extra term)
     yield from _focal_left_out(node, parent)
-    yield from _perpendicular(node)
+    yield from _perpendicular(node, parent)
     yield from _key_order(node)
     if isinstance(node, ast.Call) and _dotted(node.func) in _BOUNDS_OF_TWO and len(node.args) == 2 and not node.keywords \
             and not any(isinstance(a, ast.Starred) for a in node.args):
@@ -6216,12 +6216,21 @@ def _key_order(node):
                         "items": f"sorted({d}.items())"}[node.func.attr], ""
 
 
-def _perpendicular(node):
+_VECTOR_MAKERS = {"np.array", "np.asarray", "np.float64", "np.float32", "numpy.array", "numpy.asarray"}
+
+
+def _perpendicular(node, parent):
     """A 2D vector written where the one perpendicular to it belongs: a line's normal (a, b) walked along as
     its direction -- `np.array([a, b])` -> `np.array([-b, a])` or `[b, -a]` (a quarter turn either way).
-    Only a pair of plain values (names, entries, their negatives): a size or a point's coordinates computed
-    in place are no vector of the kind."""
+    Only a pair of plain values (names, entries, their negatives) made a vector -- given to np.array, or a
+    list bound to one name: a size or a point's coordinates computed in place are no vector of the kind, and
+    two values exchanged (`P1, P2 = P2, P1`, matrices) none at all."""
     if not (isinstance(node, (ast.List, ast.Tuple)) and isinstance(node.ctx, ast.Load) and len(node.elts) == 2):
+        return
+    made = (isinstance(parent, ast.Call) and _dotted(parent.func) in _VECTOR_MAKERS and parent.args[:1] == [node]) \
+        or (isinstance(node, ast.List) and isinstance(parent, ast.Assign) and parent.value is node
+            and len(parent.targets) == 1 and isinstance(parent.targets[0], ast.Name))
+    if not made:
         return
     plain = lambda item: isinstance(item, (ast.Name, ast.Subscript)) or (   # noqa: E731
         isinstance(item, ast.UnaryOp) and isinstance(item.op, ast.USub) and isinstance(item.operand, (ast.Name, ast.Subscript)))
