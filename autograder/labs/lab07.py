@@ -24,6 +24,7 @@ from ..engine.judges import (Probe, call_probe, digits_apart, entries_misplaced,
                       name_mistake, warp_probe)
 from ..engine.hints import Predicate, _path, call_in_a_loop, calls, code_of, expr, mentions, uses_attr
 from ..engine.registry import Lab
+from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
 
@@ -231,6 +232,8 @@ def translate_beyond(t):
                           "width" if tx else "height", not np.any(line)))
     if wrong:
         what, got, expected, which, place, size, black = wrong[0]
+        if channels_reversed(got, expected):   # (the same mistake as every colour warp's: told in its words)
+            t.fail(f"{what} is wrong: {RGB_FOR_BGR}.", mistake="the colour channels are reversed (RGB for BGR)")
         t.images(what, yours=got, expected=expected)
         t.fail(measured(f"{what}: {which} of the image should be left at the frame's edge ({place}), the rest "
                         f"black fill; {'it is black there' if black else 'it is not'} (a shift one pixel short of "
