@@ -13,7 +13,7 @@ import ast
 import numpy as np
 
 from fixtures import lab07 as truth
-from fixtures.images import photo
+from fixtures.images import photo, warp
 
 from ..engine import conventions
 from ..engine import strategies as st
@@ -214,8 +214,18 @@ EDGE_SHIFTS = ((159, 0), (0, -119))
            points=1)
 def translate_beyond(t):
     source = photo("coffee", (160, 120))
+    # (a translate wrong for an ordinary shift too -- the wrong way, the wrong axis -- is the other checks' to
+    # judge: one mistake told once, as the -H check of lab 8 does; the edge is judged of a translate right there)
+    # (a translate wrong for an ordinary shift too -- the wrong way, the wrong axis, its channels reversed -- is
+    # the other checks' to judge: one mistake told once; the edge is judged of a translate right there)
+    what = "translate(160x120 image, tx=30, ty=20)"
+    try:
+        right_there = judge_warp(t, what, call_on(t, what, "translate", source, tx=30, ty=20), source,
+                                 truth.translation(30, 20), show=False).fraction == 1
+    except Fail:
+        right_there = False
     wrong = []   # (both shifts called first: a change that mends one edge and not the other is no repair)
-    for tx, ty in EDGE_SHIFTS:
+    for tx, ty in (EDGE_SHIFTS if right_there else ()):
         what = f"translate(160x120 image, tx={tx}, ty={ty})"
         got = t.expect_array(call_on(t, what, "translate", source, tx=tx, ty=ty), what, shape=source.shape,
                              dtype=np.uint8)
@@ -232,8 +242,6 @@ def translate_beyond(t):
                           "width" if tx else "height", not np.any(line)))
     if wrong:
         what, got, expected, which, place, size, black = wrong[0]
-        if channels_reversed(got, expected):   # (the same mistake as every colour warp's: told in its words)
-            t.fail(f"{what} is wrong: {RGB_FOR_BGR}.", mistake="the colour channels are reversed (RGB for BGR)")
         t.images(what, yours=got, expected=expected)
         t.fail(measured(f"{what}: {which} of the image should be left at the frame's edge ({place}), the rest "
                         f"black fill; {'it is black there' if black else 'it is not'} (a shift one pixel short of "
@@ -331,11 +339,22 @@ def rotate_grey(t):
 def rotate_square_quarter_turns(t):
     """A square image turned a quarter turn fills its frame exactly, so a shortcut through np.rot90 or
     cv2.rotate is right there -- in the direction a positive angle means (counter-clockwise on screen)
-    only; the other checks' quarter turn is of a non-square image, where no such shortcut applies. A
-    half turn is a flip of both axes (a shortcut through `np.flip(image)` flips the colour channels too).
-    No turn and a whole turn give the image back (a shortcut for half turns testing `angle % 180 == 0`
-    flips them)."""
-    return judge_rotations(t, "square image", photo("astronaut", (128, 128)), (90, -90, 180, 270, 0, 360))
+    only; the other checks' quarter turn is of a non-square image, where no such shortcut applies. No
+    turn and a whole turn give the image back (a shortcut for half turns testing `angle % 180 == 0`
+    flips them). A half turn is a flip of both axes: judged for its channels only (a shortcut through
+    `np.flip(image)` flips them too), since OpenCV's tutorial centre (w / 2, h / 2) -- legitimate -- turns
+    it a whole pixel off the frame's centre."""
+    source = photo("astronaut", (128, 128))
+    verdict = judge_rotations(t, "square image", source, (90, -90, 270, 0, 360))
+    if verdict.fraction < 1:
+        return verdict
+    what = "rotate(square image, angle_deg=180)"
+    got = t.expect_array(call_on(t, what, "rotate", source, angle_deg=180), what, shape=source.shape, dtype=np.uint8)
+    turned = [warp(source, truth.rotation(180, centre)) for centre in (truth.image_centre(source.shape), (64.0, 64.0))]
+    if any(channels_reversed(got, expected) for expected in turned):
+        t.images(what, yours=got, expected=turned[0])
+        t.fail(f"{what} is wrong: {RGB_FOR_BGR}.", mistake="the colour channels are reversed (RGB for BGR)")
+    return verdict
 
 
 def judge_rotations(t: Trial, described: str, source, angles) -> Verdict:
