@@ -3068,21 +3068,30 @@ def simulate_other_baseline(t):
     t.fail(measured(lead + ": look at how the baseline enters the disparity."))
 
 
-@ex6.check("simulate_structured_light leaves pixels with no depth in front black (Z = 0 and Z < 0)", points=1)
+@ex6.check("simulate_structured_light leaves pixels with no depth in front black (Z = 0 and Z < 0), and a "
+           "surface too near for the projector", points=1)
 def simulate_not_in_front(t):
     """The scene of the first check with a band of rows at Z = 0 and one behind the camera (Z = -3): a
-    negative depth gives a negative disparity, whose column u - f b / Z is often on the projector."""
+    negative depth gives a negative disparity, whose column u - f b / Z is often on the projector. And a band
+    so near that its column u - f b / Z lies more than the projector's width to its left: black too (code that
+    reads the patterns at every pixel's column before leaving the unlit ones out reads past the patterns)."""
     depth, f, baseline = truth.structured_light_scene("boxes")
     depth = np.array(depth)
-    depth[20:30], depth[60:75] = 0.0, -3.0
+    near = f * baseline / (3.0 * depth.shape[1])   # (a disparity of three widths: every column below -width)
+    depth[20:30], depth[60:75], depth[40:45] = 0.0, -3.0, near
     n_bits = 6
-    what = f"simulate_structured_light(depth, f={f:g}, baseline={baseline:g}, n_bits={n_bits}), rows 20-29 at Z = 0 " \
-           "and rows 60-74 at Z = -3"
+    what = f"simulate_structured_light(depth, f={f:g}, baseline={baseline:g}, n_bits={n_bits}), rows 20-29 at Z = 0, " \
+           f"rows 60-74 at Z = -3 and rows 40-44 at Z = {near:.3g} (a disparity of three image widths)"
     got = t.expect_array(t.call("simulate_structured_light", depth.copy(), f, baseline, n_bits), what,
                          shape=(n_bits,) + depth.shape, dtype=np.uint8)
+    near_lit = np.any(got[:, 40:45] > 0)
+    if near_lit:
+        t.fail(f"{what}: rows 40-44 are lit, but their projector column u - f b / Z is off the projector (three "
+               "widths to its left): no column lights them, they are black (0) in every image.",
+               mistake="pixels off the projector are lit")
     lit = np.any(got > 0, axis=0) & (depth <= 0)
     if not lit.any():
-        return passed("every pixel with Z <= 0 is black in every image")
+        return passed("every pixel with Z <= 0, and every pixel too near for the projector, is black in every image")
     rows = sorted({int(r) for r in np.nonzero(lit)[0]})
     where = "Z = -3" if all(depth[r, 0] < 0 for r in rows) else "Z = 0" if all(depth[r, 0] == 0 for r in rows) \
         else "Z = 0 or Z = -3"
