@@ -28,6 +28,20 @@ def test_a_parameter_never_loaded_is_found_and_one_read_anywhere_is_not():
     assert never_read(fn) == {"dsize", "center"}
 
 
+def test_a_parameter_read_only_to_convert_it_into_itself_is_never_read():
+    """`P1 = np.asarray(P1, float)` (alone or in a tuple of conversions) and no other read: the converted value
+    goes unused, and so does the parameter; one read after its conversion, or converted into another name, is read."""
+    fn = code("""
+        def f(P1, P2, pts1, pts2, K):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            P1 = np.asarray(P1, float)
+            pts1 = np.asarray(pts1)
+            K_inv = np.linalg.inv(K)
+            return P2 @ pts2, pts1, K_inv
+        """).functions["f"]
+    assert never_read(fn) == {"P1"}
+
+
 def test_a_function_reading_locals_is_not_judged():
     fn = code("""
         def f(image, dsize=None):

@@ -26,16 +26,13 @@ _RANDOMNESS = ("seed", "rng", "random")
 
 
 def never_read(fn: ast.FunctionDef) -> set[str]:
-    """The parameters of ``fn`` its body never reads (empty when it reads ``locals()`` and the like)."""
+    """The parameters of ``fn`` its body never reads, or reads only to convert them into themselves
+    (`dsize = tuple(dsize)` and no other read: :func:`read_beyond_itself`); empty when it reads ``locals()``
+    and the like."""
     arguments = fn.args
     parameters = {a.arg for a in arguments.posonlyargs + arguments.args + arguments.kwonlyargs}
-    loaded = set()
-    for node in ast.walk(fn):
-        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
-            if node.id in _INTROSPECTION:
-                return set()
-            loaded.add(node.id)
-    return parameters - loaded
+    loaded = read_beyond_itself(fn)
+    return set() if loaded is None else parameters - loaded
 
 
 def unused_given(code: Code, calls) -> tuple[str, str, object] | None:
@@ -91,6 +88,30 @@ def sentence(function: str, parameter: str, value) -> str:
 UNUSED_VALUE = "a value computed is never used"
 
 
+def read_beyond_itself(fn: ast.FunctionDef) -> set[str] | None:
+    """The names ``fn`` reads other than to make themselves anew (`P1 = np.asarray(P1, float)` reads P1 only to
+    bind P1 again: a conversion whose result is never read leaves P1 unused); None where it reads ``locals()``
+    and the like."""
+    converting = set()
+    for statement in ast.walk(fn):
+        if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1):
+            continue
+        target, value = statement.targets[0], statement.value
+        pairs = [(target, value)] if isinstance(target, ast.Name) else \
+            list(zip(target.elts, value.elts)) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) \
+            and len(target.elts) == len(value.elts) else []   # (`P1, P2 = np.asarray(P1), np.asarray(P2)`)
+        converting |= {id(node) for name, made in pairs if isinstance(name, ast.Name)
+                       for node in ast.walk(made) if isinstance(node, ast.Name) and node.id == name.id}
+    loaded = set()
+    for node in ast.walk(fn):
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
+            if node.id in _INTROSPECTION:
+                return None
+            if id(node) not in converting:
+                loaded.add(node.id)
+    return loaded
+
+
 def computed_unused(code: Code, functions) -> tuple[str, str, int] | None:
     """``(function, name, line)``: a value one of ``functions`` computes into a local name and never
     reads (`corners1 = ...` beside a canvas built from `corners2` alone: the step that needs it is
@@ -100,15 +121,10 @@ def computed_unused(code: Code, functions) -> tuple[str, str, int] | None:
         fn = code.functions.get(function)
         if fn is None:
             continue
-        loaded, stored = set(), []
-        for node in ast.walk(fn):
-            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
-                if node.id in _INTROSPECTION:
-                    loaded = None
-                    break
-                loaded.add(node.id)
+        loaded = read_beyond_itself(fn)
         if loaded is None:
             continue
+        stored = []
         for node in _own_nodes(fn):   # (not those of the functions defined in it)
             if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
                     and not isinstance(node.value, ast.Constant) and not node.targets[0].id.startswith("_"):

@@ -129,6 +129,17 @@ MISTAKES = {
             X = np.linalg.svd(A)[2][:, -1, :]
             return X[:, :3] / X[:, 3:]
         """, ["only the first view"]),
+    "triangulation writing image 1's rows for the camera [I | 0]": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1, P2 = np.asarray(P1, float), np.asarray(P2, float)
+            P1 = np.asarray(P1, float)
+            out = []
+            for (x1, y1), (x2, y2) in zip(np.asarray(pts1, float), np.asarray(pts2, float)):
+                A = np.array([[-1.0, 0.0, x1, 0.0], [0.0, -1.0, y1, 0.0], x2 * P2[2] - P2[0], y2 * P2[2] - P2[1]])
+                X = np.linalg.svd(A)[2][-1]
+                out.append(X[:3] / X[3])
+            return np.array(out).reshape(-1, 3)
+        """, ["never uses its parameter `P1`"]),
     "triangulation with the cameras swapped": ("lab11.ex1", """
         _triangulate = triangulate
         def triangulate(P1, P2, pts1, pts2):
