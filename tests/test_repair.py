@@ -2904,6 +2904,20 @@ def test_a_vector_of_two_plain_values_is_turned_a_quarter_either_way():
     assert not any("w - 1" in before or "P1" in before for before, _ in changes), changes
 
 
+def test_an_inverse_trigonometric_angle_is_given_in_degrees_where_it_is_not_already():
+    """`np.arctan2(b, a)` compared with 45 and 135: `np.degrees(np.arctan2(b, a))`; one converted already is not
+    converted again."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(a, b, c):
+            angle = np.arctan2(b, a)
+            tilt = np.degrees(np.arccos(c))
+            return 45.0 <= abs(angle) <= 135.0, tilt
+    """)
+    changes = _shown_changes(source, "to_degrees")
+    assert changes == [("np.arctan2(b, a)", "np.degrees(np.arctan2(b, a))")], changes
+
+
 def test_a_dicts_entries_are_taken_in_the_order_of_their_keys():
     """A dict filled from the middle outwards and listed as it was filled: `d.values()` -> its values by their
     keys' order, `d.keys()` and `d.items()` sorted; a method given arguments (`d.get(k)`) is no listing."""

@@ -628,7 +628,11 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     elif stray > 0.05:
         # (the lines drawn on the image made grey: away from them the colours are gone, the grey levels kept)
         greyed = cv2.cvtColor(cv2.cvtColor(image, cv2.COLOR_BGR2GRAY), cv2.COLOR_GRAY2BGR)
-        if np.abs(got[away].astype(np.int16) - greyed[away]).max(axis=-1).mean() <= 2.0:
+        # (and nearer the grey copy than the image itself: on a picture of few colours, the image kept as it is
+        # is near its grey copy too)
+        to_grey = np.abs(got[away].astype(np.int16) - greyed[away]).max(axis=-1).mean()
+        to_image = np.abs(got[away].astype(np.int16) - image[away]).max(axis=-1).mean()
+        if to_grey <= 2.0 and to_image > max(5.0, 3 * to_grey):
             t.fail(measured(f"{what}: away from the lines the picture is the image converted to grey (its colours "
                             "lost): the lines are drawn on a grey copy, where a BGR image keeps its colours (drawn on "
                             "a copy of it)."), mistake="the lines are drawn on a grey copy of a colour image")

@@ -203,6 +203,7 @@ OPERATORS = {
     "precedence": ("bracket", "parenthes", "precedence", "&", "|"),   # d > 0 & m -> (d > 0) & m
     "drop_term": ("term", "added", "subtracted", "extra"),   # Z + f -> Z: a term that does not belong
     "one_of_two": ("larger", "smaller", "max", "min", "both", "either"),   # max(h1, h2) -> h1: one value, not the larger
+    "to_degrees": ("degree", "radian"),   # np.arctan2(b, a) compared with 45 -> np.degrees(np.arctan2(b, a))
     "perpendicular": ("perpendicular", "normal", "direction", "90", "quarter turn"),   # (a, b) -> (-b, a)
     "key_order": ("order", "insert", "key", "sorted"),   # d.values() -> [d[k] for k in sorted(d)]
     "focal_left_out": ("focal", "principal point", "normalis", "k^-1", "inv(k"),   # x - K[0, 2] -> (x - K[0, 2]) / K[0, 0]
@@ -1480,7 +1481,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "one_of_two", "focal_left_out", "perpendicular", "key_order", "midrange", "reverse_back", "drop_reversal", "loop_order",
+                                              "drop_term", "one_of_two", "focal_left_out", "perpendicular", "key_order", "to_degrees", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant", "colour_scale", "aligned")},
@@ -3327,6 +3328,7 @@ def _student_changes(node, parent, parents, words):
     yield from _focal_left_out(node, parent)
     yield from _perpendicular(node, parent)
     yield from _key_order(node)
+    yield from _to_degrees(node, parent)
     if isinstance(node, ast.Call) and _dotted(node.func) in _BOUNDS_OF_TWO and len(node.args) == 2 and not node.keywords \
             and not any(isinstance(a, ast.Starred) for a in node.args):
         # (`max(reference.shape[0], moving.shape[0])` where the reference's own size belongs: a bound taken
@@ -6202,6 +6204,19 @@ def _call_changes(node: ast.Call, words, what, parents):
         other = dotted[: -len(short)] + _OPPOSITES[short]
         on = what(node.func.value)
         yield "minmax", other, f"{_OPPOSITES[short]}() is taken where {short}() belongs" + (f" (of {on})" if on else "")
+
+
+_INVERSE_TRIG = {"np.arctan2", "np.arctan", "np.arcsin", "np.arccos", "numpy.arctan2", "numpy.arctan", "numpy.arcsin",
+                 "numpy.arccos", "math.atan2", "math.atan", "math.asin", "math.acos"}
+_TO_DEGREES = {"np.degrees", "np.rad2deg", "numpy.degrees", "numpy.rad2deg", "math.degrees"}
+
+
+def _to_degrees(node, parent):
+    """An angle an inverse trigonometric function gives in radians, used where degrees belong: `np.arctan2(b, a)`
+    compared with 45 and 135 -> `np.degrees(np.arctan2(b, a))` (the conversion left out)."""
+    if isinstance(node, ast.Call) and _dotted(node.func) in _INVERSE_TRIG \
+            and not (isinstance(parent, ast.Call) and _dotted(parent.func) in _TO_DEGREES):
+        yield "to_degrees", f"np.degrees({ast.unparse(node)})", ""
 
 
 def _key_order(node):
