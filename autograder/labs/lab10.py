@@ -2032,6 +2032,8 @@ def judge_track(t: Trial, frames, poses, dist=None, what=None):
     shifted = {
         "the rows are off by one frame (one frame late): row i must be the pose in frame i (frames[i])": (None,) + poses[:-1],
         "the rows are off by one frame (one frame early): row i must be the pose in frame i (frames[i])": poses[1:] + (None,),
+        measured("the rows are in reverse frame order (the last frame's pose first): row i must be the pose in frame "
+                 "i (frames[i])"): tuple(reversed(poses)),
         measured("each row is the camera's pose in the board's frame (R^T, -R^T t): the pose is inverted; "
                  "the rows are the board's pose in the camera frame, as cv2.solvePnP gives it"):
             tuple(None if p is None else (p[0].T, -p[0].T @ p[1]) for p in poses),
