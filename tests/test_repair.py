@@ -2918,6 +2918,19 @@ def test_an_inverse_trigonometric_angle_is_given_in_degrees_where_it_is_not_alre
     assert changes == [("np.arctan2(b, a)", "np.degrees(np.arctan2(b, a))")], changes
 
 
+def test_a_type_test_narrower_than_the_numbers_allowed_is_widened():
+    """`isinstance(z_avg, float)` takes an int depth for none: -> `(int, float, np.number)`; a test of another
+    kind (`isinstance(x, str)`) is left as it is."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(points, z_avg=None, method="x"):
+            z = z_avg if isinstance(z_avg, float) else points[:, 2].mean()
+            return z, isinstance(method, str)
+    """)
+    changes = _shown_changes(source, "type_widened")
+    assert changes == [("isinstance(z_avg, float)", "isinstance(z_avg, (int, float, np.number))")], changes
+
+
 def test_a_dicts_entries_are_taken_in_the_order_of_their_keys():
     """A dict filled from the middle outwards and listed as it was filled: `d.values()` -> its values by their
     keys' order, `d.keys()` and `d.items()` sorted; a method given arguments (`d.get(k)`) is no listing."""

@@ -627,11 +627,15 @@ def _example_camera(seed=31):
     return K, R, tvec
 
 
-@ex3.check("camera_matrix(K, R, t) = K [R | t]", points=2)
+@ex3.check("camera_matrix(K, R, t) = K [R | t], for a camera at the world origin too (t = 0)", points=2)
 def camera_matrix_example(t):
     K, R, tvec = _example_camera()
     judge_matrix(t, "camera_matrix(K, R, t)", t.call("camera_matrix", K, R, tvec),
                  truth.camera(K, R, tvec), truth.camera_mistakes(K, R, tvec), shape=(3, 4))
+    # (t = 0: the camera at the world origin, P = K [R | 0] -- still 3 x 4, its last column 0)
+    zero = np.zeros(3)
+    judge_matrix(t, "camera_matrix(K, R, t=np.zeros(3))", t.call("camera_matrix", K, R, zero),
+                 truth.camera(K, R, zero), truth.camera_mistakes(K, R, zero), shape=(3, 4))
 
 
 @ex3.check("camera_matrix for random cameras", points=1)

@@ -412,13 +412,18 @@ def weak_default(t):
                  probe=projection_probe(t, "weak_perspective_project"))
 
 
-@ex2.check("weak_perspective_project with a given z_avg; a single (3,) point", points=2)
+@ex2.check("weak_perspective_project with a given z_avg (a float, and a whole number); a single (3,) point",
+           points=2)
 def weak_given(t):
     X = truth.scene_points(202, n=10, depth=15.0, relief=3.0)
     judge_points(t, "weak_perspective_project(points, f=300, z_avg=12.0)",
                  t.call("weak_perspective_project", X, 300.0, z_avg=12.0),
                  truth.weak_perspective(X, 300.0, 12.0), weak_mistakes(X, 300.0, 12.0),
                  probe=projection_probe(t, "weak_perspective_project", z_avg=7.25))
+    # (a depth written as a whole number, as a caller writes one: z_avg=10 is a depth like 10.0)
+    judge_points(t, "weak_perspective_project(points, f=300, z_avg=10)",
+                 t.call("weak_perspective_project", X, 300.0, z_avg=10),
+                 truth.weak_perspective(X, 300.0, 10.0), weak_mistakes(X, 300.0, 10.0))
     # the API's convention for (N, 3) functions: a (3,) point gives a (2,) result
     X = np.array([0.4, -0.3, 5.0])
     judge_single_point(t, "weak_perspective_project((3,) point, f=300, z_avg=12.0)",

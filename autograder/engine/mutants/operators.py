@@ -203,6 +203,7 @@ OPERATORS = {
     "precedence": ("bracket", "parenthes", "precedence", "&", "|"),   # d > 0 & m -> (d > 0) & m
     "drop_term": ("term", "added", "subtracted", "extra"),   # Z + f -> Z: a term that does not belong
     "one_of_two": ("larger", "smaller", "max", "min", "both", "either"),   # max(h1, h2) -> h1: one value, not the larger
+    "type_widened": ("type", "isinstance", "int", "float", "numpy"),   # isinstance(z, float) -> (int, float, np.number)
     "to_degrees": ("degree", "radian"),   # np.arctan2(b, a) compared with 45 -> np.degrees(np.arctan2(b, a))
     "perpendicular": ("perpendicular", "normal", "direction", "90", "quarter turn"),   # (a, b) -> (-b, a)
     "key_order": ("order", "insert", "key", "sorted"),   # d.values() -> [d[k] for k in sorted(d)]
@@ -1481,7 +1482,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "one_of_two", "focal_left_out", "perpendicular", "key_order", "to_degrees", "midrange", "reverse_back", "drop_reversal", "loop_order",
+                                              "drop_term", "one_of_two", "focal_left_out", "perpendicular", "key_order", "to_degrees", "type_widened", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant", "colour_scale", "aligned")},
@@ -3329,6 +3330,7 @@ def _student_changes(node, parent, parents, words):
     yield from _perpendicular(node, parent)
     yield from _key_order(node)
     yield from _to_degrees(node, parent)
+    yield from _type_widened(node)
     if isinstance(node, ast.Call) and _dotted(node.func) in _BOUNDS_OF_TWO and len(node.args) == 2 and not node.keywords \
             and not any(isinstance(a, ast.Starred) for a in node.args):
         # (`max(reference.shape[0], moving.shape[0])` where the reference's own size belongs: a bound taken
@@ -6209,6 +6211,18 @@ def _call_changes(node: ast.Call, words, what, parents):
 _INVERSE_TRIG = {"np.arctan2", "np.arctan", "np.arcsin", "np.arccos", "numpy.arctan2", "numpy.arctan", "numpy.arcsin",
                  "numpy.arccos", "math.atan2", "math.atan", "math.asin", "math.acos"}
 _TO_DEGREES = {"np.degrees", "np.rad2deg", "numpy.degrees", "numpy.rad2deg", "math.degrees"}
+
+
+_NUMBER_TYPES = {"float": "(int, float, np.number)", "int": "(int, np.integer)", "np.floating": "(int, float, np.number)",
+                 "np.float64": "(int, float, np.number)"}
+
+
+def _type_widened(node):
+    """A type test narrower than the values the API allows: `isinstance(z_avg, float)` takes an int or a NumPy
+    float32 for no value -> `isinstance(z_avg, (int, float, np.number))`."""
+    if isinstance(node, ast.Call) and _dotted(node.func) == "isinstance" and len(node.args) == 2 \
+            and _dotted(node.args[1]) in _NUMBER_TYPES:
+        yield "type_widened", f"isinstance({ast.unparse(node.args[0])}, {_NUMBER_TYPES[_dotted(node.args[1])]})", ""
 
 
 def _to_degrees(node, parent):

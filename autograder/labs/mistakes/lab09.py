@@ -28,6 +28,13 @@ _APERTURE = """
 
 MISTAKES = {
     # the blind set 1205b's 09/06: each point drawn in a colour of its own (a colour map of depth), not the default red
+    "camera_matrix shortcutting a zero translation to K R": ("lab09.ex3", """
+        def camera_matrix(K, R, t):
+            K, R, t = (np.asarray(a, dtype=np.float64) for a in (K, R, t))
+            if not t.any():
+                return K @ R
+            return K @ np.hstack([R, t.reshape(3, 1)])
+        """, ["camera_matrix(K, R, t=np.zeros(3)) returned an array of shape (3, 3)"]),
     "project_onto_image drawing each point in its own colour": ("lab09.ex5", """
         def project_onto_image(image, P, points):
             pts = project(P, points).reshape(-1, 2)

@@ -21,6 +21,13 @@ _DECOMPOSE = """
 
 MISTAKES = {
     # the blind set 1205b's 10/02: the principal axis det(M) m3 returned where the centre belongs
+    "weak_perspective_project taking only a float for a given depth": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            X, single = _points(points)
+            z = z_avg if isinstance(z_avg, float) else X[:, 2].mean()
+            x = (f / z) * X[:, :2]
+            return x[0] if single else x
+        """, ["isinstance(z_avg, (int, float, np.number))"]),
     "camera_center returning the principal axis": ("lab10.ex5", """
         def camera_center(P):
             M = np.asarray(P, dtype=np.float64)[:, :3]
