@@ -660,7 +660,9 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
         problems.append(f"K has a negative diagonal entry ({format_matrix(np.diag(K))}): "
                         + (sign_fix if unnegated else "RQ is unique only up to signs; " + SIGNS_HINT.said(t)))
     if not rotation:
-        problems.append("R is not a rotation (R R^T != I)")
+        problems.append("R is not a rotation (R R^T != I)" + _triangular_factor(R))
+        if _triangular_factor(R):
+            labels.append(TRIANGULAR_R)
     elif np.linalg.det(R) < 0 and not unsigned and not unnegated and _the_negated_camera(R, tv, R_true, t_true) \
             and INVERTED_SIGN_TEST.found(code_of(t).reachable(["decompose_camera_matrix"])):
         # (K right, R and t the true ones negated: K [R | t] = -P -- the sign test on det(P[:, :3]) went the
@@ -1996,6 +1998,23 @@ def track_check(t):
     except Fail as failure:   # the tracking itself is right (the first sequence): half the points
         return partial(0.5, f"{failure.message} (Without a lens distortion: {first.message}.)", failure.hint,
                        failure.mistake)
+
+
+TRIANGULAR_R = "R is the triangular factor of the decomposition, not its rotation"
+
+
+def _triangular_factor(R) -> str:
+    """The sentence saying ``R`` is triangular (upper or lower) where a rotation belongs -- a QR or RQ
+    decomposition's triangular factor kept in its rotation's place --, or ''. A rotation is triangular only where
+    it is diagonal (signs), which is a rotation."""
+    scale = np.abs(R).max()
+    if scale == 0 or not np.isfinite(R).all():
+        return ""
+    for side, zeros in (("upper", np.tril(R, -1)), ("lower", np.triu(R, 1))):
+        if np.abs(zeros).max() <= 1e-9 * scale:
+            return measured(f": it is {side} triangular, as a QR or RQ decomposition's triangular factor is; the "
+                            "rotation is the decomposition's orthogonal factor (Q, or Q^T)")
+    return ""
 
 
 def _warm_started(function) -> bool:

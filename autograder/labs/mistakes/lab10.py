@@ -21,6 +21,20 @@ _DECOMPOSE = """
 
 MISTAKES = {
     # the blind set 1205b's 10/02: the principal axis det(M) m3 returned where the centre belongs
+    "decompose_camera_matrix keeping QR's triangular factor as R": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            if np.linalg.det(P[:, :3]) < 0:
+                P = -P
+            flip = np.eye(3)[::-1]
+            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
+            K = flip @ U.T @ flip
+            R = U
+            signs = np.diag(np.sign(np.diag(K)))
+            K, R = K @ signs, signs @ R
+            t = np.linalg.solve(K, P[:, 3])
+            return K / K[2, 2], R, t
+        """, ["it is upper triangular, as a QR or RQ decomposition's triangular factor is"]),
     "weak_perspective_project taking only a float for a given depth": ("lab10.ex2", """
         def weak_perspective_project(points, f, z_avg=None):
             X, single = _points(points)
