@@ -2931,6 +2931,23 @@ def test_a_type_test_narrower_than_the_numbers_allowed_is_widened():
     assert changes == [("isinstance(z_avg, float)", "isinstance(z_avg, (int, float, np.number))")], changes
 
 
+def test_an_image_size_written_as_numbers_is_given_the_input_image_s_size():
+    """`size = (640, 480)` for maps of whatever image is given -> `(image.shape[1], image.shape[0])`; small numbers
+    (`(3, 3)`, a kernel) and a function with no image parameter have no such change."""
+    source = textwrap.dedent("""
+        import cv2
+        def graded(image, K):
+            size = (640, 480)
+            kernel = (3, 3)
+            return cv2.resize(image, size), kernel
+
+        def other(points):
+            return (640, 480)
+    """)
+    changes = _shown_changes(source, "size_written")
+    assert changes == [("size = (640, 480)", "size = (image.shape[1], image.shape[0])")], changes
+
+
 def test_a_dicts_entries_are_taken_in_the_order_of_their_keys():
     """A dict filled from the middle outwards and listed as it was filled: `d.values()` -> its values by their
     keys' order, `d.keys()` and `d.items()` sorted; a method given arguments (`d.get(k)`) is no listing."""

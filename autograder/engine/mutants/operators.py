@@ -203,6 +203,7 @@ OPERATORS = {
     "precedence": ("bracket", "parenthes", "precedence", "&", "|"),   # d > 0 & m -> (d > 0) & m
     "drop_term": ("term", "added", "subtracted", "extra"),   # Z + f -> Z: a term that does not belong
     "one_of_two": ("larger", "smaller", "max", "min", "both", "either"),   # max(h1, h2) -> h1: one value, not the larger
+    "size_written": ("size", "fixed", "640", "input's", "shape"),   # (640, 480) -> (image.shape[1], image.shape[0])
     "type_widened": ("type", "isinstance", "int", "float", "numpy"),   # isinstance(z, float) -> (int, float, np.number)
     "to_degrees": ("degree", "radian"),   # np.arctan2(b, a) compared with 45 -> np.degrees(np.arctan2(b, a))
     "perpendicular": ("perpendicular", "normal", "direction", "90", "quarter turn"),   # (a, b) -> (-b, a)
@@ -1482,7 +1483,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
                                               "true_division", "factor_two", "by_last", "ufunc_out", "empty_slice", "divided_by_w",
                                               "keep_axis", "column_order", "rounding", "rank", "denormalise",
                                               "other_result", "whole_shape", "move_factor", "convert_first", "precedence",
-                                              "drop_term", "one_of_two", "focal_left_out", "perpendicular", "key_order", "to_degrees", "type_widened", "midrange", "reverse_back", "drop_reversal", "loop_order",
+                                              "drop_term", "one_of_two", "focal_left_out", "perpendicular", "key_order", "to_degrees", "type_widened", "size_written", "midrange", "reverse_back", "drop_reversal", "loop_order",
                                               "matrix_applied", "series_powers", "counted", "default_written", "fraction", "crossed", "loop_item", "conversion_inverted", "factor_transposed",
                                               "twin_factor", "homogeneous_one", "moved_term", "reduced", "squared_bound",
                                               "translation_scaled", "exact_constant", "colour_scale", "aligned")},
@@ -3331,6 +3332,7 @@ def _student_changes(node, parent, parents, words):
     yield from _key_order(node)
     yield from _to_degrees(node, parent)
     yield from _type_widened(node)
+    yield from _size_written(node, parents)
     if isinstance(node, ast.Call) and _dotted(node.func) in _BOUNDS_OF_TWO and len(node.args) == 2 and not node.keywords \
             and not any(isinstance(a, ast.Starred) for a in node.args):
         # (`max(reference.shape[0], moving.shape[0])` where the reference's own size belongs: a bound taken
@@ -6215,6 +6217,26 @@ _TO_DEGREES = {"np.degrees", "np.rad2deg", "numpy.degrees", "numpy.rad2deg", "ma
 
 _NUMBER_TYPES = {"float": "(int, float, np.number)", "int": "(int, np.integer)", "np.floating": "(int, float, np.number)",
                  "np.float64": "(int, float, np.number)"}
+
+
+_IMAGE_NAMES = re.compile(r"^(image|img|frame|picture|photo|left|right|source|src_img)\w*$")
+
+
+def _size_written(node, parents):
+    """An image size written as numbers where the input's own belongs: `size = (640, 480)` for the maps of
+    whatever image is given -> `(image.shape[1], image.shape[0])`, for each image parameter of the function (one
+    whose shape it reads, or named as an image is), in OpenCV's (width, height) order."""
+    if not (isinstance(node, ast.Tuple) and isinstance(node.ctx, ast.Load) and len(node.elts) == 2
+            and all(isinstance(e, ast.Constant) and type(e.value) is int and e.value >= 16 for e in node.elts)):
+        return
+    fn = _def_of(node, parents)
+    if fn is None:
+        return
+    shaped = {n.value.id for n in ast.walk(fn) if isinstance(n, ast.Attribute) and n.attr == "shape"
+              and isinstance(n.value, ast.Name)}
+    images = [a.arg for a in fn.args.args if a.arg in shaped or _IMAGE_NAMES.match(a.arg)]
+    for name in images[:2]:
+        yield "size_written", f"({name}.shape[1], {name}.shape[0])", ""
 
 
 def _type_widened(node):

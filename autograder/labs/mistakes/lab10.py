@@ -21,6 +21,12 @@ _DECOMPOSE = """
 
 MISTAKES = {
     # the blind set 1205b's 10/02: the principal axis det(M) m3 returned where the centre belongs
+    "undistort_image building its maps for a fixed 640 x 480": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K, dist = np.asarray(K, np.float64), np.asarray(dist, np.float64)
+            map1, map2 = cv2.initUndistortRectifyMap(K, dist, None, K, (640, 480), cv2.CV_16SC2)
+            return cv2.remap(image, map1, map2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+        """, ["to `(image.shape[1], image.shape[0])`"]),
     "decompose_camera_matrix keeping QR's triangular factor as R": ("lab10.ex5", """
         def decompose_camera_matrix(P):
             P = np.asarray(P, dtype=np.float64)
