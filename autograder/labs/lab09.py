@@ -9,6 +9,7 @@ compared with what the usual mistakes would give, so the feedback can name them.
 from __future__ import annotations
 
 import ast
+import re
 from dataclasses import dataclass
 from typing import Callable
 
@@ -1964,12 +1965,41 @@ ext1 = lab.exercise("ext1", "Extension: camera calibration", functions=[
     "calibrate(images, pattern_size, square_size)"])
 
 
-def calibration_result(t: Trial, images, pattern) -> tuple[str, np.ndarray, np.ndarray, float]:
+_POINT_COUNTS = re.compile(r"'numberOfObjectPoints' is (\d+)\s*>?\s*must be equal to\s*>?\s*'numberOfImagePoints' is (\d+)")
+GRID_MISCOUNTED = "the board's grid has another number of points than the corners found"
+
+
+def _float_step_grid(t: Trial) -> str:
+    """The sentence naming an np.arange with a float step (the square's size) in calibrate's code, or ''."""
+    for function in code_of(t).reachable(["calibrate"]):
+        for node in ast.walk(function):
+            if isinstance(node, ast.Call) and _hints_path(node.func).rsplit(".", 1)[-1] == "arange" \
+                    and len(node.args) == 3 and not isinstance(node.args[2], ast.Constant):
+                return from_code(f" Your code makes the grid with `{ast.unparse(node)[:60]}` (line {node.lineno}): with a "
+                                 "float step, where the end falls is left to rounding, and np.arange can give one "
+                                 "entry more (np.arange(0, 7 * 0.3, 0.3) has 8); count the squares instead "
+                                 "(np.arange(n) * square_size).")
+    return ""
+
+
+def calibration_result(t: Trial, images, pattern, square=truth.CALIBRATION_SQUARE) -> tuple[str, np.ndarray, np.ndarray, float]:
     """``calibrate(images, pattern, square)`` called once per grading (the checks of one set of
-    views share it), checked for its form: (what, K, dist, rms)."""
-    square = truth.CALIBRATION_SQUARE
+    views share it), checked for its form: (what, K, dist, rms). K, dist and rms do not depend on the
+    square's size (it scales the boards' positions only)."""
     what = f"calibrate({len(images)} views, pattern_size={pattern}, square_size={square})"
-    got = t.shared(("calibrate", pattern, fingerprint(*images)), lambda: t.call("calibrate", list(images), pattern, square))
+    try:
+        got = t.shared(("calibrate", pattern, square, fingerprint(*images)),
+                       lambda: t.call("calibrate", list(images), pattern, square))
+    except StudentFailure as failure:
+        counts = _POINT_COUNTS.search(failure.message) if failure.outcome.kind == "exception" else None
+        if counts is None:
+            raise
+        objects, corners = int(counts.group(1)), int(counts.group(2))
+        t.fail(f"{what} raised OpenCV's error: the object points of a view are {objects} where its corners are "
+               f"{corners}. " + measured(f"The board's grid has one point per inner corner ({pattern[0]} x "
+                                         f"{pattern[1]} = {pattern[0] * pattern[1]}), whatever the square's size ("
+                                         f"{square} here).") + _float_step_grid(t),
+               mistake=GRID_MISCOUNTED)
     if not (isinstance(got, (tuple, list)) and len(got) == 3):
         t.fail(f"{what} should return a triple (K, dist, rms)")
     K, dist, rms = got
@@ -1982,9 +2012,9 @@ def calibration_result(t: Trial, images, pattern) -> tuple[str, np.ndarray, np.n
     return what, K, dist, float(np.asarray(rms).ravel()[0])
 
 
-def judge_calibration(t: Trial, images, K_true, pattern):
+def judge_calibration(t: Trial, images, K_true, pattern, square=truth.CALIBRATION_SQUARE):
     """Calibrate on rendered views of a board with ``pattern`` inner corners, rendered with ``K_true``."""
-    what, K, dist, rms = calibration_result(t, images, pattern)
+    what, K, dist, rms = calibration_result(t, images, pattern, square)
     if abs(K[2, 2]) > 1e-12:
         K = K / K[2, 2]
     if abs(K[2, 0]) > 1.0 and abs(K[0, 2]) < 1.0:
@@ -2193,17 +2223,25 @@ GREY_FOR_OPENCV = Hint(
         none_left=""))
 
 
-@ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners), with 3 channels as "
-            "cv2.imread reads a photo", points=1)
+SKIMAGE_SQUARE = 0.3
+# (an error a colour view can cause: a depth or channel count refused, a conversion asked of a colour image)
+_CHANNEL_TROUBLE = re.compile(r"depth|channel|scn|CV_8U|cvtColor|type|dimension", re.IGNORECASE)
+
+
+@ext1.check("calibrate on views of scikit-image's chessboard picture (7 x 7 inner corners, squares of 0.3), with 3 "
+            "channels as cv2.imread reads a photo", points=1)
 def calibrate_skimage(t):
     grey, K = truth.skimage_chessboard_views()
     images = [np.repeat(view[..., None], 3, axis=2) for view in grey]   # BGR, as cv2.imread reads a photo of a board
     t.images("scikit-image's chessboard, in two of the poses", view_1=images[1], view_2=images[4])
     try:
-        return judge_calibration(t, images, K, truth.SKIMAGE_PATTERN)
+        # (squares of 0.3, whose multiples a float step counts unevenly: np.arange(0, 7 * 0.3, 0.3) has 8 entries)
+        return judge_calibration(t, images, K, truth.SKIMAGE_PATTERN, square=SKIMAGE_SQUARE)
     except StudentFailure as failure:
         if failure.outcome.kind != "exception":
             raise
+        if not _CHANNEL_TROUBLE.search(failure.message):
+            raise   # (an error of another kind: the channels are no part of it)
         raise StudentFailure(failure.outcome, f"{failure.message}\n" + measured(
             "These views have 3 channels (BGR), as cv2.imread reads a photo of a board, where the other calibration "
             "check's views are grey: calibrate takes both. ") + GREY_FOR_OPENCV.said(t)) from None

@@ -28,6 +28,13 @@ _APERTURE = """
 
 MISTAKES = {
     # the blind set 1205b's 09/06: each point drawn in a colour of its own (a colour map of depth), not the default red
+    "calibrate making the board's grid with a float step": ("lab09.ext1", reference_def_with(
+        "lab09_camera", "calibrate", "objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size",
+        "xs, ys = np.meshgrid(np.arange(0.0, cols * square_size, square_size), "
+        "np.arange(0.0, rows * square_size, square_size))\n"
+        "objp = np.zeros((xs.size, 3), np.float32)\n"
+        "objp[:, 0], objp[:, 1] = xs.ravel(), ys.ravel()"),
+        ["the object points of a view are 64 where its corners are 49", "np.arange(n) * square_size"]),
     "camera_matrix shortcutting a zero translation to K R": ("lab09.ex3", """
         def camera_matrix(K, R, t):
             K, R, t = (np.asarray(a, dtype=np.float64) for a in (K, R, t))
