@@ -1421,23 +1421,24 @@ RANK2_HINT = Hint(
                            wherever_written("sets the last singular value to 0", _zeroes_the_last)))) + ".")
 
 
-@ex4.check("fundamental_8point returns a rank-2 matrix (noisy data)", points=2)
+@ex4.check("fundamental_8point returns a rank-2 matrix (noisy data: 30 pairs, and the minimal 8)", points=2)
 def fundamental_rank2(t):
-    views = truth.two_views(seed=11, n=30)
-    pts1, pts2 = truth.add_noise(1, views.pts1, 1.0), truth.add_noise(2, views.pts2, 1.0)
-    got = t.expect_array(t.call("fundamental_8point", pts1, pts2), "fundamental_8point(noisy pts1, pts2)",
-                         shape=(3, 3), kind="iuf", finite=True)
-    s = np.linalg.svd(got, compute_uv=False)
-    if s[0] == 0:
-        t.fail("fundamental_8point returned all zeros")
-    # 1e-7 is float32's own bound: rounding moves each entry by at most half an ulp, so a rank-2
-    # F stored in float32 has s3 / s1 <= eps32 / sqrt(2) = 8.4e-8 (the reference's: 1e-12); the
-    # unnormalised 8-point F without rank 2 on these points has 3.6e-6, too close for a floor.
-    if s[2] / s[0] <= 1e-7:
-        return passed(f"smallest singular value {s[2] / s[0]:.1e} of the largest")
-    t.fail(f"fundamental_8point(noisy pts1, pts2) has rank 3 (singular values proportional to "
-           f"(1, {s[1] / s[0]:.3g}, {s[2] / s[0]:.3g})): rank 2 was not enforced. " + RANK2_HINT.said(t),
-           mistake="rank 2 was not enforced")
+    # (the minimal 8 pairs too: their system has an exact null vector, of rank 3 on noisy points like any other)
+    for n in (30, 8):
+        views = truth.two_views(seed=11, n=n)
+        pts1, pts2 = truth.add_noise(1, views.pts1, 1.0), truth.add_noise(2, views.pts2, 1.0)
+        what = f"fundamental_8point(noisy pts1, pts2) with N={n}"
+        got = t.expect_array(t.call("fundamental_8point", pts1, pts2), what, shape=(3, 3), kind="iuf", finite=True)
+        s = np.linalg.svd(got, compute_uv=False)
+        if s[0] == 0:
+            t.fail(f"{what} returned all zeros")
+        # 1e-7 is float32's own bound: rounding moves each entry by at most half an ulp, so a rank-2
+        # F stored in float32 has s3 / s1 <= eps32 / sqrt(2) = 8.4e-8 (the reference's: 1e-12); the
+        # unnormalised 8-point F without rank 2 on these points has 3.6e-6, too close for a floor.
+        if s[2] / s[0] > 1e-7:
+            t.fail(f"{what} has rank 3 (singular values proportional to (1, {s[1] / s[0]:.3g}, {s[2] / s[0]:.3g})): "
+                   "rank 2 was not enforced. " + RANK2_HINT.said(t), mistake="rank 2 was not enforced")
+    return passed(f"smallest singular value {s[2] / s[0]:.1e} of the largest")
 
 
 NOISY_SCENES = truth.FUNDAMENTAL_SCENES
