@@ -3086,6 +3086,11 @@ def simulate_not_in_front(t):
                          shape=(n_bits,) + depth.shape, dtype=np.uint8)
     near_lit = np.any(got[:, 40:45] > 0)
     if near_lit:
+        wrapped = truth.simulate_structured_light(depth, f, baseline, n_bits, column_dtype=np.uint8)
+        if not (np.any(got != wrapped, axis=0) & ~truth.simulation_ties(depth, f, baseline)).any():
+            # (a column kept in 8 bits wraps round there: -480 is 32)
+            t.fail(f"{what}: rows 40-44 are lit, " + measured(f"exactly as if {COLUMN_IN_8_BITS}") + ".",
+                   mistake=COLUMN_IN_8_BITS)
         t.fail(f"{what}: rows 40-44 are lit, but their projector column u - f b / Z is off the projector (three "
                "widths to its left): no column lights them, they are black (0) in every image.",
                mistake="pixels off the projector are lit")
