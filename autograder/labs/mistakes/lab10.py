@@ -27,20 +27,9 @@ MISTAKES = {
             map1, map2 = cv2.initUndistortRectifyMap(K, dist, None, K, (640, 480), cv2.CV_16SC2)
             return cv2.remap(image, map1, map2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
         """, ["to `(image.shape[1], image.shape[0])`"]),
-    "decompose_camera_matrix keeping QR's triangular factor as R": ("lab10.ex5", """
-        def decompose_camera_matrix(P):
-            P = np.asarray(P, dtype=np.float64)
-            if np.linalg.det(P[:, :3]) < 0:
-                P = -P
-            flip = np.eye(3)[::-1]
-            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
-            K = flip @ U.T @ flip
-            R = U
-            signs = np.diag(np.sign(np.diag(K)))
-            K, R = K @ signs, signs @ R
-            t = np.linalg.solve(K, P[:, 3])
-            return K / K[2, 2], R, t
-        """, ["it is upper triangular, as a QR or RQ decomposition's triangular factor is"]),
+    "decompose_camera_matrix keeping QR's triangular factor as R": ("lab10.ex5", reference_def_with(
+        "lab10_camera2", "decompose_camera_matrix", "R = flip @ Q.T", "R = U"),
+        ["it is upper triangular, as a QR or RQ decomposition's triangular factor is"]),
     "weak_perspective_project taking only a float for a given depth": ("lab10.ex2", """
         def weak_perspective_project(points, f, z_avg=None):
             X, single = _points(points)

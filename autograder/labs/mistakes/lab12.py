@@ -135,18 +135,10 @@ MISTAKES = {
             source = np.maximum.accumulate(np.where(valid, np.arange(d.shape[-1]), 0), axis=-1)
             return np.take_along_axis(depth, source, axis=-1)
         """, ["`np.take_along_axis(depth, source, axis=-1)` to `depth`"]),
-    "structured light reading every pixel's column before leaving the unlit ones out": ("lab12.ex6", """
-        def simulate_structured_light(depth, f, baseline, n_bits):
-            depth = np.asarray(depth, dtype=np.float64)
-            height, width = depth.shape
-            patterns = gray_code_patterns(width, n_bits)
-            valid = np.isfinite(depth) & (depth > 0)
-            u = np.broadcast_to(np.arange(width, dtype=np.float64), depth.shape)
-            disparity = np.divide(float(f) * float(baseline), depth, out=np.zeros_like(depth), where=valid)
-            column = np.floor(u - disparity + 0.5).astype(np.int64)
-            lit = valid & (column >= 0) & (column < width)
-            return np.where(lit, patterns[:, column], 0).astype(np.uint8)
-        """, ["index -480 is out of bounds", "`column` holds -480"]),
+    "structured light reading every pixel's column before leaving the unlit ones out": ("lab12.ex6", reference_def_with(
+        "lab12_stereo", "simulate_structured_light", "images[:, lit] = patterns[:, column[lit]]",
+        "images = np.where(lit, patterns[:, column], 0).astype(np.uint8)"),
+        ["index -480 is out of bounds", "`column` holds -480"]),
     "gray code patterns started with a white one": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
             width, n_bits = int(width), int(n_bits)
