@@ -1873,7 +1873,14 @@ def judge_dolly(t: Trial, X, f0, z0, distances, n_subject=None, show=False):
         t.fail(f"{what} is wrong: it looks like {mistake}.", mistake=mistake)
     if not ok_f:
         shown, wanted = format_arrays_apart(fs, fs_true)
-        t.fail(f"{what}: the focal lengths are {shown}; expected f0 * d / z0 = {wanted}")
+        # (a focal length that keeps one point's own size -- f0 (Z_k + d - z0) / Z_k --, where the subject plane's,
+        # at depth z0, belongs: measured against every point's)
+        kept = [k for k, Z in enumerate(np.asarray(X, float)[:, 2]) if Z > 0 and not np.isclose(Z, z0)
+                and np.allclose(fs, f0 * (Z + np.asarray(distances, float) - z0) / Z, rtol=1e-6)]
+        t.fail(f"{what}: the focal lengths are {shown}; expected f0 * d / z0 = {wanted}" + (measured(
+            f": they are f0 (Z + d - z0) / Z for point {kept[0]} (Z = {X[kept[0]][2]:g}), the focal lengths that keep "
+            f"that point's size; the subject is the plane at depth z0 = {z0:g}, whose size f0 d / z0 keeps")
+            if kept else ""), mistake="the focal length keeps one point's size, not the subject plane's" if kept else "")
     if n_subject:
         drift = np.abs(proj[:, :n_subject] - proj[:1, :n_subject]).max()
         if drift > at_precision(1e-6, p_scale):

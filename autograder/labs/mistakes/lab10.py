@@ -21,6 +21,15 @@ _DECOMPOSE = """
 
 MISTAKES = {
     # the blind set 1205b's 10/02: the principal axis det(M) m3 returned where the centre belongs
+    "dolly_zoom keeping the first point's size": ("lab10.ext2", """
+        def dolly_zoom(points, f0, z0, distances):
+            X, _ = _points(points)
+            distances = np.asarray(distances, dtype=np.float64).ravel()
+            focal_lengths = f0 * (X[0, 2] + distances - z0) / X[0, 2]
+            projections = np.stack([perspective_project(X + [0.0, 0.0, d - z0], f)
+                                    for f, d in zip(focal_lengths, distances)])
+            return focal_lengths, projections
+        """, ["the focal lengths that keep that point's size"]),
     "undistort_image building its maps for a fixed 640 x 480": ("lab10.ext1", """
         def undistort_image(image, K, dist):
             K, dist = np.asarray(K, np.float64), np.asarray(dist, np.float64)
