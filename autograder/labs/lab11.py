@@ -1589,8 +1589,18 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=N
     for g, M, name, where in ((g1, F, "e1", "F e1 = 0: the last row of V^T"),
                               (g2, F.T, "e2", "F^T e2 = 0: the last column of U")):
         if np.linalg.norm(M @ (g / np.linalg.norm(g))) > 1e-2:
+            # (a vector of the matrix's range -- its column space, where M x lands -- is orthogonal to the null
+            # space of M^T, not the null space of M: measured by projecting it on the range)
+            U = np.linalg.svd(M)[0][:, :2]
+            unit = g / np.linalg.norm(g)
+            in_range = np.linalg.norm(U @ (U.T @ unit) - unit) <= 1e-6
             t.fail(f"{what}: {name} = {format_matrix(g)} is not a null vector of F ({where}, the "
-                   "singular vector of the smallest singular value)")
+                   "singular vector of the smallest singular value)" + (measured(
+                       f": it lies in the column space of {'F' if name == 'e1' else 'F^T'} (the vectors "
+                       f"{'F' if name == 'e1' else 'F^T'} maps onto): a vector of the range was taken where the null "
+                       "space's belongs")
+                       if in_range else ""),
+                   mistake="an epipole taken from the range, not the null space" if in_range else "")
     for d, g, e, name in ((d1, g1, e1, "e1"), (d2, g2, e2, "e2")):
         if d > tolerance:
             shown, wanted = format_arrays_apart(_unit(g), _unit(e))

@@ -46,6 +46,12 @@ _WITHOUT_K = _MATCHED + """            inliers = mask.ravel().astype(bool)
 
 MISTAKES = {
     # the blind set 1205b's 11/06: image 2's conversion tested on image 1's channels (the line above copied)
+    "epipoles from a basis of the range (scipy.linalg.orth) where the null space belongs": ("lab11.ex5", """
+        def epipoles(F):
+            import scipy.linalg
+            F = np.asarray(F, dtype=np.float64)
+            return scipy.linalg.orth(F)[:, -1], scipy.linalg.orth(F.T)[:, -1]
+        """, ["it lies in the column space of F", "a vector of the range was taken"]),
     "two_view_reconstruction converting img2 by img1's number of channels": ("lab11.ex6", reference_def_with(
         "lab11_two_view", "two_view_reconstruction",
         "grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2",
