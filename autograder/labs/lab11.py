@@ -1591,9 +1591,12 @@ def judge_epipoles(t: Trial, what: str, got, views, at_infinity=False, F_given=N
         if np.linalg.norm(M @ (g / np.linalg.norm(g))) > 1e-2:
             # (a vector of the matrix's range -- its column space, where M x lands -- is orthogonal to the null
             # space of M^T, not the null space of M: measured by projecting it on the range)
-            U = np.linalg.svd(M)[0][:, :2]
+            U, _, Vt = np.linalg.svd(M)
             unit = g / np.linalg.norm(g)
-            in_range = np.linalg.norm(U @ (U.T @ unit) - unit) <= 1e-6
+            within = lambda basis: np.linalg.norm(basis @ (basis.T @ unit) - unit) <= 1e-6  # noqa: E731
+            # (and not in its row space too -- a forward motion's F has the two alike --: there a singular vector
+            # of the largest values is as near, and the range is no account of it)
+            in_range = within(U[:, :2]) and not within(Vt[:2].T)
             t.fail(f"{what}: {name} = {format_matrix(g)} is not a null vector of F ({where}, the "
                    "singular vector of the smallest singular value)" + (measured(
                        f": it lies in the column space of {'F' if name == 'e1' else 'F^T'} (the vectors "
