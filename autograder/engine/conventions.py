@@ -36,7 +36,7 @@ import cv2
 import numpy as np
 
 from .checks import StudentFailure, Trial, passed
-from .claims import from_code, measured
+from .claims import from_code, measured, where_to_look
 from .forms import IMAGE_SIDE
 from .hints import code_of
 
@@ -167,9 +167,10 @@ def fail_if_answers_drift(t: Trial, function: str, args: tuple, first, call: str
         if isinstance(ours, np.ndarray) and ours.dtype.kind in "biuf" and isinstance(theirs, np.ndarray) \
                 and theirs.shape == ours.shape and theirs.dtype.kind in "biuf" and not _close(theirs, ours):
             t.fail(measured(f"{call} called twice with the same arguments returned {_first(ours)}, then "
-                            f"{_first(theirs)}: your {function} keeps or changes something between calls (an array of "
-                            "the module changed in place, a list that grows), so each call answers otherwise; a "
-                            "function's answer may depend on its arguments only."), mistake=STATE_BETWEEN_CALLS)
+                            f"{_first(theirs)}: your {function} keeps or changes something between calls, so each "
+                            "call answers otherwise; a function's answer may depend on its arguments only.") + " "
+                   + where_to_look(measured("Look for an array of the module changed in place, a list that grows, or "
+                                            "random numbers drawn without a seed.")), mistake=STATE_BETWEEN_CALLS)
 
 
 def judge_grey(t: Trial, function: str, args: tuple, images, described: str = ""):
