@@ -1368,3 +1368,18 @@ READ_TWICE = "an iterator read twice: the second reading finds it empty"
 ])
 def test_a_generator_read_by_a_loop_and_a_call_is_read_twice(source, found):
     assert (READ_TWICE in one(source)) is found
+
+
+def test_rows_repeated_are_told_to_be_made_anew_with_the_student_s_own_count_and_row():
+    """`[[0.0] * 3] * n` (n points of 3 coordinates): the advice keeps their row and their count, `n` -- a 3 of
+    the grader's would mend only three points (the blind set 05c's 12/01, its evaluator's strict note)."""
+    reading = read_source(textwrap.dedent("""
+        def f(pts):
+            n = len(pts)
+            points = [[0.0] * 3] * n
+            for i in range(n):
+                points[i][0] = pts[i][0]
+            return points
+        """), frozenset())
+    sentences = [finding.sentence for found in reading.findings.values() for finding in found]
+    assert any("`[[0.0] * 3 for _ in range(n)]`, or np.zeros((n, 3))" in s for s in sentences), sentences

@@ -2362,10 +2362,17 @@ def _rows_repeated(name, function) -> list[Finding]:
                         for side in (node.value.left, node.value.right)):
             made = node.targets[0].id
             line = _line(node)
+            # (the advice in the student's own terms: their row, their count of rows -- `n`, not a 3 of ours)
+            row, count = (node.value.left, node.value.right) if isinstance(node.value.left, ast.List) \
+                else (node.value.right, node.value.left)
+            inner = ast.unparse(row.elts[0])
+            width = ast.unparse(row.elts[0].right) if isinstance(row.elts[0], ast.BinOp) else str(len(row.elts[0].elts))
+            rows = ast.unparse(count)
             return [Finding(name, line, "one row repeated: the list's rows are the same list",
                             f"{name} (line {line}) makes {made} as `{ast.unparse(node.value)}`: the outer `*` repeats "
                             f"one row object, so writing into one row (line {_line(written[made])}) writes into every row; "
-                            "make each row anew (`[[0.0] * 3 for _ in range(3)]`, or np.zeros((3, 3)))", certain=True)]
+                            f"make each row anew (`[{inner} for _ in range({rows})]`, or np.zeros(({rows}, {width})))",
+                            certain=True)]
     return []
 
 
