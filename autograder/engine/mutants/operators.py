@@ -6230,13 +6230,20 @@ def _size_written(node, parents):
             and all(isinstance(e, ast.Constant) and type(e.value) is int and e.value >= 16 for e in node.elts)):
         return
     fn = _def_of(node, parents)
-    if fn is None:
+    if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
         return
-    shaped = {n.value.id for n in ast.walk(fn) if isinstance(n, ast.Attribute) and n.attr == "shape"
-              and isinstance(n.value, ast.Name)}
-    images = [a.arg for a in fn.args.args if a.arg in shaped or _IMAGE_NAMES.match(a.arg)]
-    for name in images[:2]:
+    for name in _image_parameters(fn)[:2]:
         yield "size_written", f"({name}.shape[1], {name}.shape[0])", ""
+
+
+def _image_parameters(fn) -> list[str]:
+    """The parameters of ``fn`` that are images: one whose shape it reads, or named as an image is (once per
+    def: each of its size tuples asks, and a walk per tuple would be quadratic in the def)."""
+    if not hasattr(fn, "_image_parameters"):
+        shaped = {n.value.id for n in ast.walk(fn) if isinstance(n, ast.Attribute) and n.attr == "shape"
+                  and isinstance(n.value, ast.Name)}
+        fn._image_parameters = [a.arg for a in fn.args.args if a.arg in shaped or _IMAGE_NAMES.match(a.arg)]
+    return fn._image_parameters
 
 
 def _type_widened(node):
