@@ -730,15 +730,15 @@ def _cast_named(fn, statement, result: str, kept: str, where) -> Form | None:
     made = _last_given(fn, name, statement.lineno)
     if made is not None:
         said += f"; `{name}` comes from {_quote(made[0])} (line {made[1]})"
-        origin = made[0]
-        while isinstance(origin, ast.Call) and isinstance(origin.func, ast.Attribute) and origin.func.attr == "copy" \
+        origin, steps = made[0], 0
+        while steps < 3 and isinstance(origin, ast.Call) and isinstance(origin.func, ast.Attribute) and origin.func.attr == "copy" \
                 and isinstance(origin.func.value, ast.Name):
             # (a copy of another local: where that one was made, the dtype's source)
             earlier = _last_given(fn, origin.func.value.id, made[1])
             if earlier is None:
                 break
             said += f", a copy of {_quote(earlier[0])} (line {earlier[1]})"
-            made, origin = earlier, earlier[0]
+            made, origin, steps = earlier, earlier[0], steps + 1   # (a few copies back: each step reads the def)
     return Form(said + from_code(": make it a float array where it is made (`dtype=float`)"), CAST)
 
 
