@@ -267,3 +267,38 @@ def test_a_recurrence_that_never_reads_its_own_previous_value_is_read(loop, said
     source = "def dp(c, w, p, d):\n    e = np.empty_like(c)\n    " + loop + "\n    return e\n"
     found = lab12.recurrence_without_itself(read_code(source).reachable(["dp"]))
     assert (found.startswith(said) and said) or (found == said == ""), found
+
+
+@pytest.mark.parametrize("edit", [
+    # the forward pass's minimum over d' = d and d +- 1 only (the 05c blind set's loop over range(1, 2))
+    ("best = np.minimum(from_below, from_above)",
+     "best = previous.copy()\n"
+     "        best[:, 1:] = np.minimum(best[:, 1:], previous[:, :-1] + ramp[1])\n"
+     "        best[:, :-1] = np.minimum(best[:, :-1], previous[:, 1:] + ramp[1])"),
+    # the walk back choosing among the neighbouring disparities only
+    ("disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)",
+     "near = np.abs(candidates[None, :] - disparity[x][:, None]) <= 1\n"
+     "        disparity[x - 1] = np.argmin(np.where(near, energy[x - 1] + jump, np.inf), axis=1)"),
+], ids=["forward pass", "walk back"])
+def test_a_dp_that_cannot_jump_far_is_told_so_at_a_deep_edge(tmp_path, edit):
+    """The public scenes' edges are at most 10 px deep; the deep step's 22 px is crossed by the reference
+    in one step at any penalty. A DP whose minimum leaves far d' out misses it even at an almost-zero
+    penalty, where its smoothness=0 map finds it: named, with the measurement."""
+    from conftest import edited_reference
+
+    result = grade(edited_reference(tmp_path, MODULE, edit), ["lab12.ex5"], pictures="none", include_hidden=False)
+    edge = next(c for c in check_results(result, "lab12.ex5") if c.name.startswith("dp_stereo crosses a deep"))
+    assert edge.score == 0 and edge.mistake == lab12.JUMPS_LIMITED, edge.message
+    assert "with smoothness=0.0001" in edge.message
+
+
+def test_a_dp_whose_default_penalty_is_too_strong_for_a_deep_edge_is_not_told_its_jumps_are_limited(tmp_path):
+    """A default penalty so strong the deep step is smoothed over: the same DP at an almost-zero penalty
+    crosses the edge, so the jumps are free and the name would be false."""
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, MODULE, ("DEFAULT_SMOOTHNESS = 6.0", "DEFAULT_SMOOTHNESS = 200.0"))
+    result = grade(folder, ["lab12.ex5"], pictures="none", include_hidden=False)
+    edge = next(c for c in check_results(result, "lab12.ex5") if c.name.startswith("dp_stereo crosses a deep"))
+    assert edge.score == 0, "the deep step smoothed over loses the point"
+    assert edge.mistake != lab12.JUMPS_LIMITED and "is not taken at any penalty" not in edge.message, edge.message

@@ -2624,6 +2624,45 @@ def dp_motorcycle(t):
                                "block_size", (3, 9), "disparity map")))
 
 
+JUMPS_LIMITED = ("a jump between neighbouring disparities is limited in size: the minimum over the previous "
+                 "column's disparities d' (in the forward pass or the walk back) leaves the far ones out, where "
+                 "every d' in 0..max_disparity belongs, each at smoothness * |d - d'|")
+ALMOST_NO_PENALTY = 1e-4   # a smoothness at which any DP free to jump crosses the edge as winner-take-all does
+
+
+@ex5.check("dp_stereo crosses a deep depth edge (22 px) in one step", points=1, timeout=STEREO_TIMEOUT)
+def dp_depth_edge(t):
+    # The other scenes' edges are at most 10 px deep: a DP that only steps by a pixel or two follows
+    # them closely enough; under the API's linear penalty a jump of 22 costs no more than 22 steps of 1.
+    scene = truth.scene("deep_step")
+    what = f"dp_stereo(left, right) on {scene.name}"
+    got = expect_disparity(t, what, call_dp(t, scene), scene)
+    bad = truth.bad_pixel_rate(got, scene.judged, scene.threshold)
+    reference = figures("deep_step", "dp_5")["bad"]
+    summary = f"bad-pixel rate {bad:.1%} (reference {reference:.1%})"
+    if bad <= reference + MARGIN:
+        return passed(summary)
+    show_disparity(t, what, scene, got, bad)
+    name_oversmoothing(t, what, got, scene, reference + MARGIN)
+
+    def rate(smoothness):   # the student's own map at another penalty, None where it cannot be told
+        got = t.probe(f"dp_stereo/smoothness {smoothness:g}/{scene.name}", lambda: call_dp(t, scene,
+                                                                                          smoothness=smoothness))
+        usable = isinstance(got, np.ndarray) and got.shape == scene.disparity.shape and got.dtype.kind in "iuf"
+        return truth.bad_pixel_rate(np.nan_to_num(got.astype(np.float64)), scene.judged, scene.threshold) \
+            if usable else None
+    unsmoothed, almost = rate(0), rate(ALMOST_NO_PENALTY)
+    if unsmoothed is not None and almost is not None and \
+            unsmoothed <= figures("deep_step", "dp_5_s0")["bad"] + MARGIN and almost > unsmoothed + MARGIN:
+        # (measured: with no penalty the edge is found, with almost none it is not -- so it is not the
+        # penalty's size that stops the map, but which jumps the minimum may take)
+        t.fail(measured(f"{what}: {summary}; it looks like {JUMPS_LIMITED}. With smoothness=0 your map finds "
+                        f"the edge ({unsmoothed:.1%} bad pixels), yet with smoothness={ALMOST_NO_PENALTY:g}, a "
+                        f"penalty that weighs almost nothing, it does not ({almost:.1%}): the jump of 22 px is not "
+                        "taken at any penalty."), mistake=JUMPS_LIMITED)
+    t.fail(measured(f"{what}: {summary}: the map does not follow the square's edge, a jump from 25 to 3.3 px."))
+
+
 ZERO_SMOOTHNESS = "smoothness=0 is taken for the default (0 is false, as None is)"
 ZERO_TAKEN = zero_taken_for_missing("smoothness")
 
