@@ -268,27 +268,33 @@ def _float_made(node) -> ast.expr | None:
     """The part of ``node`` that makes an array float, or None: ``x.astype(np.float32)``,
     ``np.float64(x)``, ``np.asarray(x, dtype=float)``, ``x / 255`` (a true division is float whatever it
     divides), a mean of pixels (``img.mean(axis=2)``), arithmetic with a float number or weights
-    (``img @ [0.114, 0.587, 0.299]``), arithmetic on one of them, or either branch of a conditional."""
-    if isinstance(node, ast.IfExp):
-        return _float_made(node.body) or _float_made(node.orelse)
-    if isinstance(node, ast.BinOp):
-        if isinstance(node.op, ast.Div) or _float_numbers(node.left) or _float_numbers(node.right):
-            return node
-        return node if _float_made(node.left) or _float_made(node.right) else None
-    if not isinstance(node, ast.Call):
-        return None
+    (``img @ [0.114, 0.587, 0.299]``), arithmetic on one of them (the whole arithmetic is told), or either
+    branch of a conditional."""
+    # (walked with a stack, not by recursion: a chain `a + b + ...` nests as deep as it is long)
+    stack = [(node, None)]   # (a part, the outermost arithmetic it is in)
+    while stack:
+        part, arithmetic = stack.pop()
+        if isinstance(part, ast.IfExp):
+            stack += [(part.orelse, arithmetic), (part.body, arithmetic)]
+        elif isinstance(part, ast.BinOp):
+            if isinstance(part.op, ast.Div) or _float_numbers(part.left) or _float_numbers(part.right):
+                return arithmetic or part
+            stack += [(part.right, arithmetic or part), (part.left, arithmetic or part)]
+        elif isinstance(part, ast.Call) and _float_call(part):
+            return arithmetic or part
+    return None
+
+
+def _float_call(node: ast.Call) -> bool:
     last = _path(node.func).rpartition(".")[2]
     words = [ast.unparse(a) for a in node.args[1:] if last in ("asarray", "array")] + \
         [ast.unparse(k.value) for k in node.keywords if k.arg == "dtype"] + \
         [ast.unparse(a) for a in node.args if last == "astype"]
     if last == "astype" or any(k.arg == "dtype" for k in node.keywords):
         # (the type written decides: `.astype(np.uint8)` after a mean makes it uint8 again)
-        return node if any(w.endswith(("float", "float32", "float64")) for w in words) else None
-    if last in ("float32", "float64") or any(w.endswith(("float", "float32", "float64")) for w in words) \
-            or last in _FLOAT_REDUCTIONS or (last in ("dot", "matmul", "tensordot")
-                                             and any(_float_numbers(a) for a in node.args)):
-        return node
-    return None
+        return any(w.endswith(("float", "float32", "float64")) for w in words)
+    return last in ("float32", "float64") or any(w.endswith(("float", "float32", "float64")) for w in words) \
+        or last in _FLOAT_REDUCTIONS or (last in ("dot", "matmul", "tensordot") and any(_float_numbers(a) for a in node.args))
 
 
 def _float_numbers(node) -> bool:
