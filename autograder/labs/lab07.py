@@ -214,10 +214,9 @@ EDGE_SHIFTS = ((159, 0), (0, -119))
            points=1)
 def translate_beyond(t):
     source = photo("coffee", (160, 120))
-    # (a translate wrong for an ordinary shift too -- the wrong way, the wrong axis -- is the other checks' to
-    # judge: one mistake told once, as the -H check of lab 8 does; the edge is judged of a translate right there)
     # (a translate wrong for an ordinary shift too -- the wrong way, the wrong axis, its channels reversed -- is
-    # the other checks' to judge: one mistake told once; the edge is judged of a translate right there)
+    # the other checks' to judge: one mistake told once, as the -H check of lab 8 does; the edge is judged of a
+    # translate right there)
     what = "translate(160x120 image, tx=30, ty=20)"
     try:
         right_there = judge_warp(t, what, call_on(t, what, "translate", source, tx=30, ty=20), source,
