@@ -180,3 +180,36 @@ def test_a_matrix_of_the_right_numbers_in_other_places_is_told_where_each_belong
     assert entries_misplaced(expected, expected) == ""
     assert entries_misplaced(reshaped + np.array([[0, 0, 0], [0, 0, 1e-3]]), expected) == ""
     assert entries_misplaced(np.ones((2, 3)), np.ones((2, 3))) == ""
+
+
+def test_a_library_fit_of_another_family_is_told_only_where_it_is_what_affine_lstsq_answers():
+    """`cv2.findHomography` answered (directly, or through names made from it) is the fit told; one called only
+    to compare with beside the student's own least squares is not (the sentence would be false there)."""
+    import ast
+
+    from autograder.labs.lab07 import _feeds_the_return
+
+    def told(source):
+        function = ast.parse(textwrap.dedent(source)).body[0]
+        call = next(n for n in ast.walk(function) if isinstance(n, ast.Call) and ast.unparse(n.func).endswith(
+            "findHomography"))
+        return _feeds_the_return(function, call)
+
+    assert told("""
+        def affine_lstsq(src, dst):
+            H, _ = cv2.findHomography(src, dst, 0)
+            A = H[:2] / H[2, 2]
+            return A
+        """)
+    assert told("""
+        def affine_lstsq(src, dst):
+            return cv2.findHomography(src, dst, 0)[0][:2]
+        """)
+    assert not told("""
+        def affine_lstsq(src, dst):
+            H, _ = cv2.findHomography(src, dst, 0)
+            A = np.linalg.lstsq(design(src), dst.ravel(), rcond=None)[0].reshape(2, 3)
+            if np.abs(H[2, :2]).max() > 1e-3:
+                warnings.warn("not affine")
+            return A
+        """)

@@ -691,12 +691,29 @@ OTHER_MODELS = {
 OTHER_MODEL = "a library fit of another family of maps"
 
 
+def _feeds_the_return(function, call: ast.Call) -> bool:
+    """Whether ``call``'s value reaches a ``return`` of ``function``: returned as it is, or through the names
+    assigned from it and from those, in the order the statements are written (one pass: linear in the def).
+    A fit called only to compare with, or to check, is not what the function answers."""
+    carried, statements = set(), sorted((n for n in ast.walk(function) if isinstance(n, (ast.Assign, ast.Return))),
+                                        key=lambda n: (n.lineno, n.col_offset))
+    for statement in statements:
+        parts = list(ast.walk(statement.value)) if statement.value is not None else []
+        reached = any(p is call for p in parts) or any(isinstance(p, ast.Name) and p.id in carried for p in parts)
+        if reached and isinstance(statement, ast.Return):
+            return True
+        if reached:
+            carried |= {n.id for target in statement.targets for n in ast.walk(target) if isinstance(n, ast.Name)}
+    return False
+
+
 def _other_model(t: Trial) -> str:
-    """The sentence naming a fit of another family the student's affine_lstsq calls (read in its code), or ''."""
+    """The sentence naming a fit of another family the student's affine_lstsq calls and answers with (read in
+    its code), or ''."""
     for function in code_of(t).reachable(["affine_lstsq"]):
         for node in ast.walk(function):
             name = _path(node.func).rsplit(".", 1)[-1] if isinstance(node, ast.Call) else ""
-            if name in OTHER_MODELS:
+            if name in OTHER_MODELS and _feeds_the_return(function, node):
                 return from_code(f" Your code fits {OTHER_MODELS[name]} (`cv2.{name}`, line {node.lineno}); the "
                                  "least-squares affine map solves the sheet's 2N x 6 system of all the pairs "
                                  "(np.linalg.lstsq).")
