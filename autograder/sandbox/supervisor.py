@@ -1152,7 +1152,14 @@ class Sandbox:
             ready = select.select([] if write else [fd], [fd] if write else [], [], min(remaining, self.TICK))
             if ready[0] or ready[1]:
                 return
-            self._check_in()
+            try:
+                self._check_in()
+            except (EOFError, _Stopped) as ended:
+                # (a worker that ended wrote nothing more after the select: what it wrote before -- a reply
+                # on its way, its length -- is read first, so that how it ended is told with it)
+                if write or getattr(ended, "reason", "pipe") != "pipe" or not select.select([fd], [], [], 0)[0]:
+                    raise
+                return
 
     def _write(self, data: bytes, deadline: float):
         view = memoryview(data)
