@@ -5039,3 +5039,47 @@ def test_arctan2_given_its_arguments_in_its_own_order_is_told_alone():
     assert repair._arctan2_ordered(exchanged("math.atan2(u, v)", "math.atan2(v, u)"))
     assert not repair._arctan2_ordered(exchanged("np.arctan2(y, x)", "np.arctan2(x, y)"))
     assert not repair._arctan2_ordered(exchanged("(r * np.cos(phi), r * np.sin(phi))", "(r * np.sin(phi), r * np.cos(phi))"))
+
+
+Z_BUFFERED = """
+    def simulate_structured_light(depth, f, baseline, n_bits):
+        depth = np.asarray(depth, dtype=np.float64)
+        height, width = depth.shape
+        patterns = gray_code_patterns(width, n_bits)
+        images = np.zeros((int(n_bits), height, width), dtype=np.uint8)
+        rows, cols = np.nonzero(np.isfinite(depth) & (depth > 0))
+        z = depth[rows, cols]
+        column = np.floor(cols - float(f) * float(baseline) / z + 0.5).astype(np.int64)
+        on_projector = (column >= 0) & (column < width)
+        rows, cols, column, z = rows[on_projector], cols[on_projector], column[on_projector], z[on_projector]
+        nearest = np.full((height, width), np.inf)
+        np.minimum.at(nearest, (rows, column), z)
+        front = z <= nearest[rows, column]
+        rows, cols, column = rows[front], cols[front], column[front]
+        images[:, rows, cols] = patterns[:, column]
+        return images
+    """
+
+
+def test_changes_that_all_make_one_filter_keep_everything_are_told_as_the_filter_taken_out(tmp_path):
+    """A z-buffer of the student's own (only the nearest pixel of a projector column lit), which the API's model
+    has not: its test turned round, the depth tested made the row index, the minimum taken of another number --
+    each mends by making the filter keep every pixel (the 05c blind set's 12/06, told `z` -> `rows` before).
+    The filter's removal is told."""
+    said = " ".join(failing_messages(mutant(tmp_path, "lab12_stereo", Z_BUFFERED), "lab12.ex6"))
+    assert "removing `rows, cols, column = (rows[front], cols[front], column[front])`" in said, said
+    assert "rows[on_projector]" not in said and "z >= nearest" not in said, said
+
+
+def test_a_filter_is_read_with_what_its_mask_is_computed_from():
+    fn = ast.parse(textwrap.dedent(Z_BUFFERED)).body[0]
+    nodes = list(ast.walk(fn))
+    [kept] = [n for n in nodes if isinstance(n, ast.Assign) and repair._kept_by_mask(n) == "front"]
+    lines = repair._feeding(nodes, kept, "front")
+    text = textwrap.dedent(Z_BUFFERED).splitlines()
+    fed = {text[line - 1].strip().split(" =")[0].split("(")[0] for line in lines}
+    assert fed >= {"front", "np.minimum.at", "nearest", "rows, cols, column, z", "column", "z"}, fed
+    assert "images" not in fed and "patterns" not in fed
+    assert repair._kept_by_mask(ast.parse("a = b[m]").body[0]) == "m"
+    assert repair._kept_by_mask(ast.parse("a, b = a[m], b[n]").body[0]) is None
+    assert repair._kept_by_mask(ast.parse("a = b[0]").body[0]) is None

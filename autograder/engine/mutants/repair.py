@@ -883,6 +883,29 @@ class _Student:
         readings = sum(isinstance(n, ast.Name) and n.id == node.id and isinstance(n.ctx, ast.Load) for n in nodes)
         return stored and readings == 1
 
+    def filter_all_feed(self, fixes) -> object | None:
+        """The student's mutant taking out a filter that every one of ``fixes`` (two or more, in one def) feeds:
+        a statement keeping the entries of a mask (`rows, cols = rows[front], cols[front]`), the changes all
+        at lines the mask is computed from -- its test turned round, a value made another, what it is
+        compared with replaced. Changes that mend alike at so many places of one test mend by letting it keep
+        everything: the filter is the slip. None where there is no such filter, or no change taking it out."""
+        wheres = {fix.where for _, fix in fixes}
+        if len(fixes) < 2 or len(wheres) != 1:
+            return None
+        where = wheres.pop()
+        nodes, _ = self._walk(where)
+        changed = {line for _, fix in fixes for line, _, _ in fix.changes}
+        for statement in nodes:
+            mask = _kept_by_mask(statement)
+            if mask is None or statement.lineno in changed or not changed <= _feeding(nodes, statement, mask):
+                continue
+            for mutant in self.ordered(where):
+                where_, ordinal, operator, _ = mutant.edits[0]
+                if len(mutant.edits) == 1 and operator == "drop_statement" and where_ == where \
+                        and 0 <= ordinal < len(nodes) and nodes[ordinal] is statement:
+                    return mutant
+        return None
+
     def removes_a_mask_guard(self, mutant) -> bool:
         """Whether the mutant takes out whole an `if` that raises when a mask is not all (or any) true, the
         mask read again after it (`valid = d > 0`, `if not valid.all(): raise`, then `np.divide(...,
@@ -1486,6 +1509,37 @@ class _Student:
 
 REFUTED = "repair refuted"   # the shared key of (a change as told, whether a hidden check refuted it)
 HEAD = "Trying small changes to your code"
+
+
+def _kept_by_mask(statement) -> str | None:
+    """The mask a statement filters by -- `a = a[m]`, `a, b = a[m], b[m]` (each value the entries of the mask
+    ``m``, a name) -- or None."""
+    if not isinstance(statement, ast.Assign) or len(statement.targets) != 1:
+        return None
+    values = statement.value.elts if isinstance(statement.value, ast.Tuple) else [statement.value]
+    masks = {v.slice.id for v in values if isinstance(v, ast.Subscript) and isinstance(v.slice, ast.Name)}
+    return masks.pop() if len(masks) == 1 and all(isinstance(v, ast.Subscript) for v in values) else None
+
+
+def _feeding(nodes, statement, name: str) -> set[int]:
+    """The lines, before ``statement``, of the statements ``name``'s value there is computed from: those
+    assigning it, or writing into it in place (`np.minimum.at(nearest, ...)`), followed back through every
+    name they read (one pass, from the statement back: linear in the def)."""
+    before = sorted((n for n in nodes if isinstance(n, (ast.Assign, ast.AugAssign, ast.Expr))
+                     and n.lineno < statement.lineno), key=lambda n: n.lineno, reverse=True)
+    wanted, lines = {name}, set()
+    for step in before:
+        if isinstance(step, ast.Expr):
+            call = step.value
+            written = {call.args[0].id} if isinstance(call, ast.Call) and call.args \
+                and isinstance(call.args[0], ast.Name) else set()
+        else:
+            targets = step.targets if isinstance(step, ast.Assign) else [step.target]
+            written = {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+        if written & wanted:
+            lines.add(step.lineno)
+            wanted |= {n.id for n in ast.walk(step) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    return lines
 
 
 def _refuted(trial, fix, function: str) -> None:
@@ -2839,6 +2893,14 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             halfway.add(mutant.key)     # right on the failing inputs, not on all: half of a slip made twice?
             if mutant.key in known:
                 partly.append(mutant)
+    # (changes at several lines of one filter's test, each mending alike -- the test turned round, the value
+    # tested made the row index, the bound made a number -- mend by letting the filter keep everything: where
+    # taking the filter out mends too, that is told, not one of the ways of making it keep all)
+    unfiltered = student.filter_all_feed(fixes)
+    if unfiltered is not None and clock.left() > 0 and variant.confirmed(unfiltered, failing) \
+            and not variant.writes_inputs(unfiltered) and not variant.breaks_other_checks(unfiltered) \
+            and variant.fix(unfiltered) is not None:
+        fixes = [(unfiltered, variant.fix(unfiltered))]
     # A change in a helper shared with other graded functions is not told where one of them has passed
     # every check of its own so far in this grading: a helper it runs rightly is no place for this
     # function's fix (`dsize or size` -> `dsize and size` in a warp helper mends a scale by breaking the
