@@ -2863,7 +2863,11 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
                                      _inside_a_dropped_term(pair[1], dropped),
-                                     pair[1].operator in REMOVALS, pair[1].size, pair[1].written))
+                                     pair[1].operator in REMOVALS, pair[1].size, pair[1].written,
+                                     # (the same change made by an operator of its own and by the counterpart
+                                     # alignment: the operator's, whose words say what the slip is -- which
+                                     # came first depended on what an earlier check had time to find)
+                                     pair[1].operator == "aligned"))
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
             break

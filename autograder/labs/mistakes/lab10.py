@@ -85,7 +85,7 @@ MISTAKES = {
             p = np.linalg.svd(A)[2][len(A) - 1]
             P = np.linalg.inv(T) @ p.reshape(3, 4) @ U
             return P / np.linalg.norm(P)
-        """, ["`len(A) - 1`"]),
+        """, ["len(A) - 1"]),   # (the row counted from the end, or what `len(A) - 1` held: either names it)
     # the blind set 1204c's 10/08: rvec taken for -rvec where it points away from the previous frame's
     "track_pose keeping rvec on the previous frame's side": ("lab10.ext3", """
         def track_pose(frames, pattern_size, square_size, K, dist=None):

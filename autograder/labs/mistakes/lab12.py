@@ -86,7 +86,7 @@ MISTAKES = {
             X = Vt[:, -1]
             X = X[:, :3] / X[:, 3:]
             return X[0] if single else X
-        """, ["`P1, P2, pts1, pts2 = (P2, P1, pts2, pts1)`"]),
+        """, ["`P1, P2 = (P2, P1)`"]),   # (the exchange taken out, or made of the points too: both mend it)
     # the blind set 1204d's 12/02: np.vectorize typed by its first value, an int 0 for an invalid pixel
     "depth_from_disparity by np.vectorize returning an int 0": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
