@@ -371,9 +371,12 @@ class _Student:
                 # (and of each kind, a change of code the reference writes word for word after the others:
                 # mending there likely compensates -- `np.cross(e1, e2)` exchanged beside `C2 = R.T @ T`
                 # whose minus is missing -- and a search bounded in time may end at the first it finds)
+                # (of those, a name read for the one unpacked beside it first -- `kp2[n.trainIdx]` in a loop over
+                # `m, n` pairs: the pair is the code's own, where `kp1`/`kp2` twins are many; a slow function's
+                # search in its time may reach only the first few of a kind)
                 smallest = sorted(shown, key=lambda m: (
                     m.where != function, not (_twin_swap(self.fixes[m.key]) or self.twin_items(m) or self.zipped_swap(m)
-                                              or self.twin_sibling(m)),
+                                              or self.twin_sibling(m)), not self.zipped_swap(m),
                     m.operator not in ADDITIONS and self.departs_from_reference(m),
                     self.fixes[m.key].size,
                     self.fixes[m.key].written, m.line))
@@ -884,13 +887,14 @@ class _Student:
         return stored and readings == 1
 
     def filter_all_feed(self, fixes) -> object | None:
-        """The student's mutant taking out a filter that every one of ``fixes`` (two or more, in one def) feeds:
-        a statement keeping the entries of a mask (`rows, cols = rows[front], cols[front]`), the changes all
-        at lines the mask is computed from -- its test turned round, a value made another, what it is
-        compared with replaced. Changes that mend alike at so many places of one test mend by letting it keep
-        everything: the filter is the slip. None where there is no such filter, or no change taking it out."""
+        """The student's mutant taking out a filter that every one of ``fixes`` (in one def) feeds: a statement
+        keeping the entries of a mask (`rows, cols = rows[front], cols[front]`), the changes all at lines the
+        mask is computed from -- its test turned round, a value made another, what it is compared with
+        replaced. Where taking the filter out mends too (the caller confirms it), such changes mend by letting
+        it keep everything: the filter is the slip. (How many of them the search confirms in its time
+        varies; one is enough.) None where there is no such filter, or no change taking it out."""
         wheres = {fix.where for _, fix in fixes}
-        if len(fixes) < 2 or len(wheres) != 1:
+        if not fixes or len(wheres) != 1:
             return None
         where = wheres.pop()
         nodes, _ = self._walk(where)
@@ -2847,6 +2851,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # (and a term taken out before a change inside it that mends alike: `int(abs(s) / h)` for `int(abs(s) *
     # h)` makes the extra width vanish on every image tried, where `w + int(abs(s) * h)` -> `w` says it)
     shown = [(m, f) for m, f in shown if f is not None]
+    # (the same change made by an operator of its own and by the counterpart alignment: the operator's is kept,
+    # whose words say what the slip is -- which came first depended on what an earlier check had time to find)
+    own_words = {f.changes for _, f in shown if f.operator != "aligned"}
+    shown = [(m, f) for m, f in shown if f.operator != "aligned" or f.changes not in own_words]
     dropped = [f for m, f in shown if f.operator == "drop_term" and m.key in exactly]
     # (and where a library refused a value's type, a conversion before the changes that only steer round
     # the value: an empty colour, None, mends a drawing that NumPy integers broke)
@@ -2863,11 +2871,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                                      student.bypasses(pair[0]), pair[0].key not in to_the_bit,
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
                                      _inside_a_dropped_term(pair[1], dropped),
-                                     pair[1].operator in REMOVALS, pair[1].size, pair[1].written,
-                                     # (the same change made by an operator of its own and by the counterpart
-                                     # alignment: the operator's, whose words say what the slip is -- which
-                                     # came first depended on what an earlier check had time to find)
-                                     pair[1].operator == "aligned"))
+                                     pair[1].operator in REMOVALS, pair[1].size, pair[1].written))
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
@@ -2897,9 +2901,9 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             halfway.add(mutant.key)     # right on the failing inputs, not on all: half of a slip made twice?
             if mutant.key in known:
                 partly.append(mutant)
-    # (changes at several lines of one filter's test, each mending alike -- the test turned round, the value
-    # tested made the row index, the bound made a number -- mend by letting the filter keep everything: where
-    # taking the filter out mends too, that is told, not one of the ways of making it keep all)
+    # (changes at the lines of one filter's test, each mending alike -- the test turned round, the value tested
+    # made the row index, the bound made a number -- mend by letting the filter keep everything: where taking
+    # the filter out mends too, that is told, not one of the ways of making it keep all)
     unfiltered = student.filter_all_feed(fixes)
     if unfiltered is not None and clock.left() > 0 and variant.confirmed(unfiltered, failing) \
             and not variant.writes_inputs(unfiltered) and not variant.breaks_other_checks(unfiltered) \
