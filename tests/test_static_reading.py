@@ -1383,3 +1383,25 @@ def test_rows_repeated_are_told_to_be_made_anew_with_the_student_s_own_count_and
         """), frozenset())
     sentences = [finding.sentence for found in reading.findings.values() for finding in found]
     assert any("`[[0.0] * 3 for _ in range(n)]`, or np.zeros((n, 3))" in s for s in sentences), sentences
+
+
+@pytest.mark.parametrize("source, said", [
+    ("def f(p, q):\n    return p[:, 2] > 0 & q[:, 2] > 0",
+     "write `(p[:, 2] > 0) & (q[:, 2] > 0)`"),
+    ("def f(d, lo, hi):\n    return d >= lo | d <= hi", "write `(d >= lo) | (d <= hi)`"),
+    ("def f(d):\n    return (d > 0) & (d < 5)", None),
+    ("def f(d, m):\n    return 0 < d & m < 5", "write `(0 < d) & (m < 5)`"),
+    ("def f(d):\n    return 0 < d < 5", None),
+])
+def test_two_comparisons_joined_by_a_bitwise_operator_without_parentheses_are_read(source, said):
+    """`&` binds before `>`: `a > 0 & b > 0` is `a > (0 & b) > 0` (the 05d blind set's 11/06, a TypeError told
+    only as relayed before)."""
+    sentences = [f.sentence for found in read_source(source, frozenset()).findings.values() for f in found]
+    assert (any(said in s for s in sentences) if said else not any("binds before" in s for s in sentences)), sentences
+
+
+def test_a_reciprocal_transposed_in_a_product_is_read_as_taken_for_the_inverse():
+    """`x @ (K1 ** -1).T` (the 05d blind set's 11/04, a failed SVD told only as relayed before)."""
+    source = "def f(x, K1):\n    return x @ (K1 ** -1).T\n"
+    sentences = [f.sentence for found in read_source(source, frozenset()).findings.values() for f in found]
+    assert any("np.linalg.inv(K1)" in s for s in sentences), sentences

@@ -264,6 +264,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _null_vector_by_argmin(name, function)
     found += _rows_repeated(name, function)
     found += _reciprocal_as_inverse(name, function)
+    found += _comparison_through_bitwise(name, function)
     found += _iterator_read_twice(name, function)
     found += _state_kept_between_calls(name, function, lists)
     return found
@@ -2381,6 +2382,9 @@ def _reciprocal_as_inverse(name, function) -> list[Finding]:
     gives each entry's reciprocal (inf for its zeros), not the inverse matrix."""
     in_products = {id(side) for p in _nodes(function) if isinstance(p, ast.BinOp) and isinstance(p.op, ast.MatMult)
                    for side in (p.left, p.right)}   # (read once: a def's every power asks)
+    # (and transposed there: `x @ (K ** -1).T`)
+    in_products |= {id(n.value) for n in _nodes(function) if isinstance(n, ast.Attribute) and n.attr == "T"
+                    and id(n) in in_products}
     for node in _nodes(function):
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.UnaryOp) \
                 and isinstance(node.right.op, ast.USub) and isinstance(node.right.operand, ast.Constant) \
@@ -2391,6 +2395,34 @@ def _reciprocal_as_inverse(name, function) -> list[Finding]:
                             "entry by entry, so it is each entry's reciprocal (inf where an entry is 0), not the inverse "
                             f"matrix; use np.linalg.inv({node.left.id})", certain=True)]
     return []
+
+
+_BITWISE = {ast.BitAnd: "&", ast.BitOr: "|"}
+
+
+def _comparison_through_bitwise(name, function) -> list[Finding]:
+    """``a > 0 & b > 0``: ``&`` (and ``|``) bind before the comparisons, so Python reads ``a > (0 & b) > 0``, a
+    chained comparison of ``0 & b`` -- a TypeError for float arrays, an ambiguous truth value or a wrong mask
+    for others. Two comparisons joined by ``&`` need their own parentheses."""
+    for node in _nodes(function):
+        if not isinstance(node, ast.Compare) or len(node.ops) != 2:
+            continue
+        middle = node.comparators[0]
+        if isinstance(middle, ast.BinOp) and type(middle.op) in _BITWISE:
+            joined = _BITWISE[type(middle.op)]
+            first = ast.unparse(ast.Compare(node.left, node.ops[:1], [middle.left]))
+            second = ast.unparse(ast.Compare(middle.right, node.ops[1:], node.comparators[1:]))
+            line = _line(node)
+            return [Finding(name, line, f"two comparisons joined by {joined} without parentheses",
+                            f"{name} (line {line}) writes `{ast.unparse(node)}`: `{joined}` binds before the "
+                            f"comparisons, so Python reads `{ast.unparse(node.left)} {_OPS.get(type(node.ops[0]), '?')} "
+                            f"({ast.unparse(middle)}) {_OPS.get(type(node.ops[1]), '?')} "
+                            f"{ast.unparse(node.comparators[1])}`, a chained comparison; write `({first}) {joined} "
+                            f"({second})`", certain=True)]
+    return []
+
+
+_OPS = {ast.Gt: ">", ast.GtE: ">=", ast.Lt: "<", ast.LtE: "<=", ast.Eq: "==", ast.NotEq: "!="}
 
 
 def _as_list(value) -> str:
