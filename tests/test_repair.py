@@ -5083,3 +5083,12 @@ def test_a_filter_is_read_with_what_its_mask_is_computed_from():
     assert repair._kept_by_mask(ast.parse("a = b[m]").body[0]) == "m"
     assert repair._kept_by_mask(ast.parse("a, b = a[m], b[n]").body[0]) is None
     assert repair._kept_by_mask(ast.parse("a = b[0]").body[0]) is None
+
+
+def test_a_square_written_where_a_power_of_two_belongs_is_told_base_and_exponent_swapped(tmp_path):
+    """`n_bits ** 2` stripes where `2 ** n_bits` belong (right at 2 and 4 bits only: the 05d blind set's 12/05,
+    only the wrong column told before)."""
+    folder = edited_reference(tmp_path, "lab12_stereo", ("k = (u * (1 << int(n_bits))) // int(width)",
+                                                         "k = (u * int(n_bits) ** 2) // int(width)"))
+    said = " ".join(failing_messages(folder, "lab12.ex6"))
+    assert "changing `int(n_bits) ** 2` to `2 ** int(n_bits)`" in said, said
