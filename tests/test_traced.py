@@ -202,6 +202,19 @@ def test_an_index_past_its_axis_is_named_with_its_value():
     assert sentence.startswith("`i + 1` is 4 in `values[i + 1]` (line 5): axis 0 of `values` (shape (4,)) has 4 entries")
 
 
+def test_a_fixed_index_past_an_axis_the_input_made_empty_is_named_with_the_array_s_shape():
+    """`null_space(A)[:, 0]` on a full-rank (noisy) system: SciPy answers (4, 0) -- the 05d blind set's 11/01, told
+    only as the relayed IndexError before."""
+    sentence = raised_sentence("""
+        from scipy.linalg import null_space
+        def solve(A):
+            return null_space(A)[:, 0]
+        """, "solve", np.arange(16.0).reshape(4, 4) ** 2 + np.eye(4))
+    assert sentence.startswith("`null_space(A)` has shape (4, 0) in `null_space(A)[:, 0]` (line 4): its axis 1 "
+                               "has no entries at all"), sentence
+    assert "the last row of Vt from np.linalg.svd" in sentence
+
+
 def test_a_list_indexed_past_its_end_is_named_with_the_index_and_its_length():
     # Python's error says neither: the module's palette and a local list alike
     sentence = raised_sentence("""

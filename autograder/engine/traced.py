@@ -609,6 +609,20 @@ def _index_named(recording, expressions, index, axis, size, where) -> Form | Non
             continue
         parts = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
         for part in parts:
+            shape = recording.shape(node.value)
+            if isinstance(part, ast.Constant) and part.value == index and shape and axis < len(shape) \
+                    and shape[axis] == size:
+                # (a fixed index past an axis the input made short -- empty: a null space of no vectors)
+                entries = "no entries at all" if size == 0 else f"only {size} entries, numbered 0 to {size - 1}"
+                said = f"{_quote(node.value)} has shape {_shape_text(shape)} in {_quote(node)} {where}: its axis " \
+                       f"{axis} has {entries} on this input"
+                if size == 0 and isinstance(node.value, ast.Call) and _called_name(node.value) == "null_space":
+                    # (SciPy's null_space keeps the singular vectors of singular values below a tolerance: a
+                    # least-squares system of noisy data has none)
+                    said += " -- scipy.linalg.null_space keeps only exact null vectors, and a system of noisy " \
+                            "equations has full rank: the least-squares solution is the last row of Vt from " \
+                            "np.linalg.svd"
+                return Form(said, INDEX)
             if isinstance(part, (ast.Slice, ast.Constant)):
                 continue
             span = recording.range(part) if recording.shape(part) else None
