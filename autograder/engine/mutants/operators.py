@@ -2282,9 +2282,11 @@ def _changes(node, parents, words: _Words, line):
             yield "add_sub", None, f"{right} is {verb}" + (f" ({left} {'minus' if isinstance(node.op, ast.Sub) else 'plus'} it)" if left else "")
         else:
             yield "add_sub", None, _placed(f"a term is {verb}", place())
-    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and not isinstance(node.left, ast.Constant) \
-            and isinstance(node.right, ast.Constant) and node.right.value == 2 and type(node.right.value) is int:
-        # (a power of two written as a square: `n_bits ** 2` stripes where `2 ** n_bits` belong -- equal at 2 and 4)
+    if words.student and isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) \
+            and not isinstance(node.left, ast.Constant) and isinstance(node.right, ast.Constant) \
+            and node.right.value == 2 and type(node.right.value) is int:
+        # (a power of two written as a square: `n_bits ** 2` stripes where `2 ** n_bits` belong -- equal at 2 and 4;
+        # the student's code only: the reference's squares are sums of squares, never powers of two)
         yield "swap_operands", None, _placed("the base and the exponent of a power are swapped (a square where a "
                                              "power of 2 belongs)", place())
     if isinstance(node, ast.BinOp) and type(node.op) in _NON_COMMUTATIVE:
