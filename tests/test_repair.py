@@ -2800,6 +2800,34 @@ def test_the_parts_of_an_item_unpacked_inside_the_loop_are_siblings_too():
     assert not any("h" in re.findall(r"\w+", student.fix(m).changes[0][2]) for m in swaps)
 
 
+def test_a_parameter_read_after_the_function_resolved_it_is_tried_among_the_first():
+    """`s = DEFAULT if smoothness is None else smoothness`, then `DEFAULT * ramp` where `s` belongs (a
+    module default read again), or a point set read raw after it was normalised: the resolved name
+    for the raw one is a change tried first; the same change before the resolving line is not."""
+    source = textwrap.dedent("""
+        import numpy as np
+        DEFAULT = 0.5
+
+        def graded(costs, smoothness=None, pts=None):
+            early = DEFAULT * costs
+            s = DEFAULT if smoothness is None else smoothness
+            pts_n = pts - pts.mean(axis=0)
+            ramp = DEFAULT * np.arange(len(costs))
+            spread = np.abs(pts).max()
+            mixed = costs * spread
+            total = np.sum(costs)
+            return early + ramp + spread + s + pts_n.sum() + mixed + total
+    """)
+    student = repair._Student(source, ast.parse(source), {"graded"})
+    resolved = {student.fix(m).changes[0][1:] for m in student.mutants("graded") if student.resolved_name(m)}
+    assert ("DEFAULT * np.arange(len(costs))", "s * np.arange(len(costs))") in resolved, resolved
+    assert ("np.abs(pts).max()", "np.abs(pts_n).max()") in resolved, resolved
+    assert not any("mixed" in after for _, after in resolved), resolved   # (made of two values: no stand-in)
+    assert not any(before.startswith("DEFAULT * costs") for before, _ in resolved), resolved
+    first = [m for m in student.ordered("graded") if m.operator == "other_name"][:2]   # (each kind has its turns)
+    assert all(student.resolved_name(m) for m in first), [student.fix(m).changes for m in first]
+
+
 def test_a_block_of_columns_moved_by_its_own_width_is_a_change_tried():
     """A design matrix's second row written with the first row's columns (`A[r + 1, 0:4] = X` where
     `4:8` belongs: the line copied, its block left): the window moved by its width, either way (never

@@ -619,9 +619,9 @@ def _index_named(recording, expressions, index, axis, size, where) -> Form | Non
                 if size == 0 and isinstance(node.value, ast.Call) and _called_name(node.value) == "null_space":
                     # (SciPy's null_space keeps the singular vectors of singular values below a tolerance: a
                     # least-squares system of noisy data has none)
-                    said += " -- scipy.linalg.null_space keeps only exact null vectors, and a system of noisy " \
-                            "equations has full rank: the least-squares solution is the last row of Vt from " \
-                            "np.linalg.svd"
+                    said += from_code(" -- scipy.linalg.null_space keeps only exact null vectors, and a system "
+                                      "of noisy equations has full rank: the least-squares solution is the last "
+                                      "row of Vt from np.linalg.svd")
                 return Form(said, INDEX)
             if isinstance(part, (ast.Slice, ast.Constant)):
                 continue

@@ -324,6 +324,7 @@ class _Student:
         self._shapes: dict = {}      # id of a statement (kept alive in _walked) -> its code with names masked
         self._places: dict = {}      # id of a node (kept alive in _walked) -> (its statement, its position there)
         self._zipped: dict = {}      # def name -> the (name, name) pairs of its loops over zip
+        self._resolved: dict = {}    # def name -> {(raw, resolved): line} of names made from a parameter or constant
         self._unpacking: dict | None = None   # line -> the loops and assignments with several targets there
         self._sizes: dict = {}       # def name -> the names it computes from an array's size
         self._lock = threading.Lock()
@@ -371,12 +372,13 @@ class _Student:
                 # (and of each kind, a change of code the reference writes word for word after the others:
                 # mending there likely compensates -- `np.cross(e1, e2)` exchanged beside `C2 = R.T @ T`
                 # whose minus is missing -- and a search bounded in time may end at the first it finds)
+                # (and a parameter or constant read after the function made its resolved form, `s` of `smoothness`)
                 # (of those, a name read for the one unpacked beside it first -- `kp2[n.trainIdx]` in a loop over
                 # `m, n` pairs: the pair is the code's own, where `kp1`/`kp2` twins are many; a slow function's
                 # search in its time may reach only the first few of a kind)
                 smallest = sorted(shown, key=lambda m: (
                     m.where != function, not (_twin_swap(self.fixes[m.key]) or self.twin_items(m) or self.zipped_swap(m)
-                                              or self.twin_sibling(m)), not self.zipped_swap(m),
+                                              or self.twin_sibling(m) or self.resolved_name(m)), not self.zipped_swap(m),
                     m.operator not in ADDITIONS and self.departs_from_reference(m),
                     self.fixes[m.key].size,
                     self.fixes[m.key].written, m.line))
@@ -1190,6 +1192,50 @@ class _Student:
         if len(before) != len(after) or not changed <= self._zipped[where]:
             return False
         return len(changed) == 1 if operator == "other_name" else len(changed) == 2
+
+    def resolved_name(self, mutant) -> bool:
+        """Whether the mutant reads, for a parameter or a module constant, the local the function made of
+        it before that line (`DEFAULT_SMOOTHNESS` -> `s` after `s = DEFAULT_SMOOTHNESS if smoothness is None
+        else smoothness`; `pts` -> `pts_n` after `pts_n = normalise(pts)`): the raw value read where its
+        resolved form belongs."""
+        where, _, operator, _ = mutant.edits[0]
+        fn = self._defs.get(where)
+        if operator != "other_name" or len(mutant.edits) != 1 or fn is None:
+            return False
+        if where not in self._resolved:
+            self._resolved[where] = self._resolving(fn)
+        fix = self.fix(mutant)
+        if fix is None or len(fix.changes) != 1:
+            return False
+        line, before, after = fix.changes[0]
+        before, after = re.findall(r"\w+", before), re.findall(r"\w+", after)
+        changed = [(a, b) for a, b in zip(before, after) if a != b]
+        return len(before) == len(after) and len(changed) == 1 and \
+            self._resolved[where].get(changed[0], line) < line
+
+    def _resolving(self, fn) -> dict:
+        """{(raw, resolved): line} of ``fn``'s assignments that make one value stand for a parameter or
+        a module constant: a choice between it and another (`s = DEFAULT if smoothness is None else
+        smoothness`, `k = k or 3`), or a step of it alone (`pts_n = pts - pts.mean(axis=0)`, `grey =
+        cv2.cvtColor(image, ...)`; modules and constants aside)."""
+        modules = {alias.asname or alias.name.split(".")[0] for node in ast.walk(self.tree)
+                   if isinstance(node, (ast.Import, ast.ImportFrom)) for alias in node.names}
+        raw = {a.arg for a in fn.args.args + fn.args.kwonlyargs}
+        constants = {node.id for node in ast.walk(fn) if isinstance(node, ast.Name) and node.id.isupper()}
+        made = {}
+        for node in ast.walk(fn):
+            if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
+                continue
+            target, value = node.targets[0].id, node.value
+            if isinstance(value, (ast.IfExp, ast.BoolOp)):
+                branches = [value.body, value.orelse] if isinstance(value, ast.IfExp) else value.values
+                sources = {b.id for b in branches if isinstance(b, ast.Name)} & (raw | constants)
+            else:
+                read = {n.id for n in ast.walk(value) if isinstance(n, ast.Name)} - modules - constants
+                sources = read if len(read) == 1 and read <= raw else set()
+            for source in sources - {target}:
+                made.setdefault((source, target), node.lineno)
+        return made
 
     def neighbours(self, first, second) -> bool:
         """Whether two changes are of items side by side: the same list's, tuple's or call's (`[..., x2,
