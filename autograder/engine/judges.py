@@ -928,6 +928,30 @@ def blank_canvas(got, image, away) -> str:
             f"({kept:.0%} of them kept): it looks like {BLANK_CANVAS}")
 
 
+def _depths(P, X) -> np.ndarray:
+    """Each point's depth in the camera ``P`` (its sign: in front or behind), whatever P's scale and sign."""
+    P = np.asarray(P, np.float64)
+    return np.column_stack([X, np.ones(len(X))]) @ P[2] * np.sign(np.linalg.det(P[:, :3]))
+
+
+def fail_if_front_points_not_given(t: Trial, what: str, got, expected, P1, P2):
+    """A triangulation (labs 11 and 12) of the right shape giving NaN or infinite rows: which, and where
+    every one of them is in front of both cameras, that they are (no point there is left without an
+    answer: a test of "behind the camera" that marks them is the slip, not the points)."""
+    if not (isinstance(got, np.ndarray) and got.dtype.kind == "f" and got.shape == np.shape(expected)):
+        return
+    lost = ~np.all(np.isfinite(got), axis=1)
+    expected = np.asarray(expected, dtype=np.float64)
+    if not lost.any():
+        return
+    front = (_depths(P1, expected) > 0) & (_depths(P2, expected) > 0)
+    if front[lost].all():
+        t.fail(measured(f"{what} returned NaN or infinite values for {lost.sum()} of the {len(got)} points, and "
+                        f"each of those {lost.sum()} is in front of both cameras (a positive depth in each): NaN "
+                        "is for a point behind a camera; look at the test that decides which points are behind"),
+               mistake="points in front of both cameras given NaN")
+
+
 def fail_if_points_left_out(t: Trial, what: str, got, expected, P1):
     """A triangulation (labs 11 and 12) returning fewer rows than correspondences, each the answer
     (``expected``, its rows) of one of them in order: which are left out, and what they share."""

@@ -647,19 +647,22 @@ def warp_affine_grey_default(t):
 @ex5.check("warp_affine with dsize=(width, height)", points=2)
 def warp_affine_dsize(t):
     # grey, as the API allows (the other warp_affine check gives a colour image); then a colour image, whose
-    # output is made at dsize too (not like the input)
+    # output is made at dsize too (not like the input); then the identity, which at another size is a crop
+    # (a shortcut for a matrix that moves nothing still owes dsize its size -- blind set 1205d's 07/05)
     source = photo("chelsea", (160, 120), grey=True)
     A = np.array([[1.2, 0.1, 5.0], [0.0, 1.1, -10.0]])
-    what = "warp_affine(grey image, A, dsize=(220, 100))"
+    colour = photo("chelsea", (160, 120))
+    identity = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    cases = [("warp_affine(grey image, A, dsize=(220, 100))", source, A, (220, 100)),
+             ("warp_affine(colour image, A, dsize=(220, 100))", colour, A, (220, 100)),
+             ("warp_affine(colour image, the identity, dsize=(100, 90))", colour, identity, (100, 90))]
     try:
-        grey = judge_warp(t, what, call_on(t, what, "warp_affine", source, A, dsize=(220, 100)), source, A,
-                          truth.warp_mistakes(A), dsize=(220, 100), probe=image_probe(t, "warp_affine"))
-        if grey.fraction < 1:
-            return grey
-        colour = photo("chelsea", (160, 120))
-        what = "warp_affine(colour image, A, dsize=(220, 100))"
-        return judge_warp(t, what, call_on(t, what, "warp_affine", colour, A, dsize=(220, 100)), colour, A,
-                          truth.warp_mistakes(A), dsize=(220, 100), probe=image_probe(t, "warp_affine"))
+        for what, image, M, dsize in cases:
+            verdict = judge_warp(t, what, call_on(t, what, "warp_affine", image, M, dsize=dsize), image, M,
+                                 truth.warp_mistakes(M), dsize=dsize, probe=image_probe(t, "warp_affine"))
+            if verdict.fraction < 1:
+                return verdict
+        return verdict
     except Fail as failure:
         # (unexplained by the image alone, and dsize read: does its value change anything? A dsize never read
         # is named as a parameter unused, from the code, by the grading itself)

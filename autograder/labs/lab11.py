@@ -33,6 +33,7 @@ from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, d
 from ..engine.hints import RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, functions_read, keyword, mentions
 from ..engine.ignored import never_read
 from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canvas, call_probe, confirm,
+                              fail_if_front_points_not_given,
                               fail_if_points_left_out, format_matrix, name_mistake, over_variants,
                               where_matrices_differ, where_points_differ)
 from ..engine.pictures import side_by_side, svg_points
@@ -204,7 +205,9 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, g
         t.fail(f"{what} returned shape ({n}, 4); expected ({n}, 3): the homogeneous solution (X, Y, Z, w) is "
                "returned; the point is (X, Y, Z) / w")
     name_batched_vt_row(t, what, got, n)
-    fail_if_points_left_out(t, what, got, linear_triangulation(P1, P2, pts1, pts2), P1)
+    linear = linear_triangulation(P1, P2, pts1, pts2)
+    fail_if_points_left_out(t, what, got, linear, P1)
+    fail_if_front_points_not_given(t, what, got, linear, P1, P2)
     got = t.expect_array(got, what, shape=(n, 3), kind="iuf")
     if not np.all(np.isfinite(got)):
         t.fail(f"{what} returned NaN or infinite values")

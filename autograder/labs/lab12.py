@@ -38,7 +38,8 @@ from ..engine.forms import shape_form
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
                             keyword, mentions,
                             size_given_as_shape)
-from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fail_if_points_left_out, fingerprint,
+from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fail_if_front_points_not_given,
+                            fail_if_points_left_out, fingerprint,
                       judge_default_is_the_apis,
                       judge_parameter_changes_result, judge_parameter_used, name_mistake, over_variants,
                       repeating_border, same_informative_result)
@@ -584,6 +585,7 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
     name_batched_vt_row(t, what, got, n)
     linear = truth.linear_triangulation(P1, P2, pts1, pts2)
     fail_if_points_left_out(t, what, got, linear, P1)
+    fail_if_front_points_not_given(t, what, got, linear, P1, P2)
     got = t.expect_array(got, what, shape=(n, 3), kind="iuf", finite=True)
     scale = max(1.0, float(np.abs(X_true).max()))
     error = np.linalg.norm(got - (X_true if exact else linear), axis=1)

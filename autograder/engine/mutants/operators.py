@@ -939,6 +939,9 @@ def _make_power_inside(node, payload):
 def _make_slice(node, payload):
     if payload == "other_end":   # costs[:, d:] -> costs[:, :d]: the part before the bound, not after it
         return ast.Slice(copy.deepcopy(node.upper), copy.deepcopy(node.lower), None)
+    if payload == "drop_last":   # x[:, d:] -> x[:, :-d or None]: the last d entries off, not the first (none for 0)
+        return ast.Slice(None, ast.BoolOp(ast.Or(), [ast.UnaryOp(ast.USub(), copy.deepcopy(node.lower)),
+                                                     ast.Constant(None)]), None)
     lower, upper = payload   # l[:, 1:] -> l[:, :2]; A[r, 3:7] -> A[r, 4:8]
     return ast.Slice(None if lower is None else _signed(lower), None if upper is None else _signed(upper), None)
 
@@ -4709,6 +4712,10 @@ def _slice_changes(node: ast.Slice):
         return
     if (node.lower is None) != (node.upper is None) and _constant_index(node.lower or node.upper) is None:
         yield "slice", "other_end", ""   # `x[d:]` <-> `x[:d]` for a bound the code computes
+        if node.lower is not None:
+            # (d entries dropped from the start where the last d belong off: a shift padded on the left and then
+            # cut back where it began, `np.pad(R, ((0, 0), (d, 0)))[:, d:]`, undoes itself)
+            yield "slice", "drop_last", ""
         return
     lower, upper = (None if b is None else _constant_index(b) for b in (node.lower, node.upper))
     if (node.lower is not None and lower is None) or (node.upper is not None and upper is None):

@@ -753,6 +753,21 @@ class _Student:
                 node = None if isinstance(parent, ast.stmt) else parent
         return made
 
+    def block_never_run(self, mutant):
+        """For a statement taken out that is the whole block of an ``if`` without ``else`` (`if xl - xr <= 0:`
+        then `X = np.full(3, np.nan)`), the same change as that test made always false (None otherwise): told
+        so, it points at the test, where the slip is likelier than in the one line the block holds."""
+        if len(mutant.edits) != 1 or mutant.edits[0][2] != "drop_statement":
+            return None
+        where, ordinal, _, _ = mutant.edits[0]
+        nodes, parents = self._walk(where)
+        node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        holder, field, _ = parents.get(id(node), (None, None, None)) if node is not None else (None, None, None)
+        if not (isinstance(holder, ast.If) and field == "body" and len(holder.body) == 1 and not holder.orelse):
+            return None
+        test = next((i for i, each in enumerate(nodes) if each is holder.test), None)
+        return None if test is None else replace(mutant, edits=((where, test, "constant", False),))
+
     def test_taken_out(self, guard) -> Fix | None:
         """A guard of :meth:`guards` (its test made True or False) told as the test taken out: its block
         always run, or never (None when the test is not an ``if``'s)."""
@@ -2931,6 +2946,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         untested = confirmed and variant.guard_untested(mutant, failing)
         if confirmed and not untested and not student.steers_round_a_guard(mutant) \
                 and not student.narrows_a_mask_guard(mutant) and not variant.breaks_other_checks(mutant):
+            # (a block's one statement taken out is its test never true: told as the test, where the slip likely is)
+            never = student.block_never_run(mutant)
+            told = student.test_taken_out(never) if never is not None else None
+            mutant, fix = (never, told) if told is not None else (mutant, fix)
             fixes.append((mutant, fix))
             lines.add(fix.changes[0][0])
         elif untested and getattr(variant, "untested_guard", None) is not None:

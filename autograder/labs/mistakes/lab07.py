@@ -31,6 +31,15 @@ MISTAKES = {
                 out[..., c] = cv2.warpAffine(image[..., c], np.asarray(A, np.float64), size)
             return out
         """, ["could not broadcast"]),
+    # the blind set 1205d's 07/05: a shortcut for the identity that returns the input, whatever dsize asks
+    "warp_affine returning the input for the identity, dsize or not": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            A = np.asarray(A, dtype=np.float64)
+            if np.allclose(A, [[1, 0, 0], [0, 1, 0]]):
+                return image.copy()
+            height, width = image.shape[:2]
+            return cv2.warpAffine(image, A, dsize or (width, height))
+        """, ["taking out the block under `if np.allclose(A, [[1, 0, 0], [0, 1, 0]]):`"]),
     "warp_affine of a padded image": ("lab07.ex5", """
         def warp_affine(image, A, dsize=None):
             height, width = image.shape[:2]

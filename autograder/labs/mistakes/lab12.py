@@ -1134,4 +1134,40 @@ MISTAKES = {
         def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
             return _dp_right(left, right, max_disparity, block_size, 0.02 if smoothness is None else smoothness)
         """, ["the default smoothness penalty is too weak"]),
+    # the blind set 1205d's 12/02: the right image padded on the left, then cut back at its start (no shift)
+    "block_matching shifting by np.pad then cutting the pad's columns off again": ("lab12.ex4", """
+        _ncc_right = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost == "ncc":
+                return _ncc_right(left, right, max_disparity, block_size, cost)
+            L, R = _grey_float(left), _grey_float(right)
+            height, width = L.shape
+            best = np.full((height, width), np.inf)
+            disparity = np.zeros((height, width))
+            for d in range(min(int(max_disparity), width - 1) + 1):
+                shifted = np.pad(R, ((0, 0), (d, 0)), mode="edge")[:, d:]
+                ssd = _box_mean((L - shifted) ** 2, int(block_size))
+                ssd[:, :d] = np.inf
+                better = ssd < best
+                best[better] = ssd[better]
+                disparity[better] = d
+            return disparity
+        """, ["`np.pad(R, ((0, 0), (d, 0)), mode='edge')[:, :-d or None]`"]),
+    # the blind set 1205d's 12/01: "behind the cameras" decided by the disparity's sign, not the depth
+    "triangulate giving NaN where the disparity is not positive": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            pts1 = np.asarray(pts1, dtype=np.float64)
+            single = pts1.ndim == 1
+            pts1, pts2 = pts1.reshape(-1, 2), np.asarray(pts2, dtype=np.float64).reshape(-1, 2)
+            points = np.empty((len(pts1), 3))
+            for i in range(len(pts1)):
+                (xl, yl), (xr, yr) = pts1[i], pts2[i]
+                A = np.array([xl * P1[2] - P1[0], yl * P1[2] - P1[1], xr * P2[2] - P2[0], yr * P2[2] - P2[1]])
+                X = np.linalg.svd(A)[2][-1]
+                X = X[:3] / X[3]
+                if xl - xr <= 0:
+                    X = np.full(3, np.nan)
+                points[i] = X
+            return points[0] if single else points
+        """, ["is in front of both cameras", "look at the test that decides which points are behind"]),
 }
