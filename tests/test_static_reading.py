@@ -1088,6 +1088,37 @@ def test_an_array_made_anew_or_copied_at_every_turn_is_not_read_as_one(turn):
     assert "one array is appended at every turn" not in one(source), one(source)
 
 
+def test_a_running_product_stored_per_item_and_updated_in_place_is_read_with_each_loop():
+    """`to_ref[k] = chain` after `chain @= step[k - 1]`, walking to each side of a reference image (the blind
+    set 1205d's 08/02): every stored item is the one array; told once, with the second loop's line, and the
+    update written anew; the product rebound (`chain = chain @ ...`) or stored as a copy is not read."""
+    source = """
+        import numpy as np
+
+        def graded(step, r, n):
+            to_ref = [None] * n
+            chain = np.eye(3)
+            for k in range(r + 1, n):
+                chain @= step[k - 1]
+                to_ref[k] = chain
+            chain = np.eye(3)
+            for k in range(r - 1, -1, -1):
+                chain @= np.linalg.inv(step[k])
+                to_ref[k] = chain
+            return to_ref
+        """
+    findings = read_source(textwrap.dedent(source)).findings["graded"]
+    assert [f.mistake for f in findings] == ["one array is appended at every turn"], findings
+    assert "`chain = chain @ step[k - 1]`" in findings[0].sentence and "line 13 does the same" in findings[0].sentence, \
+        findings[0].sentence
+    rebound = source.replace("chain @= step[k - 1]", "chain = chain @ step[k - 1]").replace(
+        "chain @= np.linalg.inv(step[k])", "chain = chain @ np.linalg.inv(step[k])")
+    assert not one(rebound), one(rebound)
+    assert not one(source.replace("to_ref[k] = chain", "to_ref[k] = chain.copy()")), one(source)
+    # (an array's item is written with the values, a copy: `to_ref = np.empty((n, 3, 3))` keeps each product)
+    assert not one(source.replace("to_ref = [None] * n", "to_ref = np.empty((n, 3, 3))")), one(source)
+
+
 def test_the_unbound_method_with_its_array_first_is_not_read_as_an_output():
     """`np.ndarray.dot(a, b)` is `a.dot(b)`: two operands, no output."""
     source = """

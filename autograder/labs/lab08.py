@@ -3296,6 +3296,38 @@ EXACT_COLLAPSE_HINT = Hint(
             "with finer - pyrUp(coarser) and the collapse with adding them back in the same order")
 
 
+_BLURS = ("GaussianBlur", "blur", "boxFilter", "medianBlur", "bilateralFilter")
+
+
+def own_blur_band(functions) -> str:
+    """A subtraction of a level's own blur from it, as written (`fine - cv2.GaussianBlur(fine, (5, 5), 0)`,
+    or through a name assigned that blur): a difference of Gaussians at one scale, where a Laplacian band
+    takes the next coarser level brought up. "" when the code has none."""
+    for function in functions:
+        blurred = {}   # name -> the expression it blurs
+        for node in ast.walk(function):
+            if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                    and _blurs(node.value) is not None:
+                blurred[node.targets[0].id] = _blurs(node.value)
+        for node in ast.walk(function):
+            if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub):
+                of = _blurs(node.right) if not isinstance(node.right, ast.Name) else blurred.get(node.right.id)
+                if of is not None and ast.dump(of) == ast.dump(node.left):
+                    return " ".join(ast.unparse(node).split())
+    return ""
+
+
+def _blurs(node):
+    """The image a cv2 blur call blurs (its first argument), or None."""
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in _BLURS \
+            and isinstance(node.func.value, ast.Name) and node.func.value.id == "cv2" and node.args:
+        return node.args[0]
+    return None
+
+
+OWN_BLUR_BAND = "a band made as a level less its own blur"
+
+
 def coarsest_upsampled(image, levels: int, rounded: bool = True) -> np.ndarray:
     """The coarsest Gaussian level brought back to full size with cv2.pyrUp, no band added
     (``rounded``: to the grey levels of an image)."""
@@ -3356,6 +3388,12 @@ def blend_identity(t):
     if (calls("cv2.pyrUp") & calls("cv2.resize")).found(read):
         t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels: {RESIZE_AND_PYRUP}",
                mistake=RESIZE_AND_PYRUP_MISTAKE)
+    band = own_blur_band(read)
+    if band:   # (a difference of Gaussians at one scale: what the collapse adds back is another image's)
+        t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels: " + from_code(
+            f"your code makes a band as `{band}`, a level less its own blur; the collapse adds each band to the "
+            "next coarser level brought up, so a band must be the level less that same image, finer - "
+            "cv2.pyrUp(coarser, dstsize=...), for building and collapsing to undo each other"), mistake=OWN_BLUR_BAND)
     t.fail(f"{what} changed {bad:.0%} of the pixels by more than 2 grey levels; " + EXACT_COLLAPSE_HINT.said(t))
 
 

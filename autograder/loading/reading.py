@@ -28,7 +28,7 @@ from __future__ import annotations
 import ast
 import bisect
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
 
@@ -1318,13 +1318,28 @@ def _twin_lopsided(name, function) -> list[Finding]:
 
 # ------------------------------------------------------------------ one array appended at every turn
 _MADE_ARRAYS = frozenset({"empty", "zeros", "ones", "full", "empty_like", "zeros_like", "ones_like", "full_like",
-                          "array", "copy"})
+                          "array", "copy", "eye", "identity"})
+
+
+_OPERATOR_TEXT = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.MatMult: "@"}
+
+
+def _makes_a_container(node) -> bool:
+    """Whether ``node`` makes a list or a dict (`[]`, `[None] * n`, `list(...)`, `{}`, `dict()`): a container
+    whose items are the objects put in it."""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult):
+        return _makes_a_container(node.left) or _makes_a_container(node.right)
+    return isinstance(node, (ast.List, ast.ListComp, ast.Dict, ast.DictComp)) \
+        or (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("list", "dict"))
 
 
 def _same_array_appended(name, function) -> list[Finding]:
     """``buf = np.empty(...)`` before a loop, ``buf[:] = ...`` (or ``buf *= ...``) in it, and ``out.append(buf)``:
     each item of the list is that one array, which ends with the last turn's values."""
     made_before: dict = {}
+    made = _assigned_names(function)
+    containers = {target for target, values in made.items() if values and all(_makes_a_container(v) for v in values)}
+    found: list[Finding] = []
     within: set = set()   # (the nodes of a loop already read: only outermost loops are, each node once)
     for statement in sorted((node for node in _nodes(function) if isinstance(node, (ast.Assign, ast.For, ast.While))),
                             key=_line):
@@ -1349,18 +1364,35 @@ def _same_array_appended(name, function) -> list[Finding]:
         changed.update({n.target.id: _line(n) for n in inside if isinstance(n, ast.AugAssign)
                         and isinstance(n.target, ast.Name)})
         for call in inside:
+            # (kept by `out.append(buf)`, or by `out[k] = buf` -- a running product `chain @= step` kept per image)
             if isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute) and call.func.attr == "append" \
                     and len(call.args) == 1 and isinstance(call.args[0], ast.Name):
-                array = call.args[0].id
-                if array in made_before and array in changed and array not in rebound:
-                    listed = ast.unparse(call.func.value)
-                    return [Finding(name, _line(call), "one array is appended at every turn",
-                                    f"{name} (line {_line(call)}) appends `{array}` to `{listed}` at every turn of the "
-                                    f"loop, and line {changed[array]} overwrites `{array}` in place: every item of "
-                                    f"`{listed}` is that one array (made on line {made_before[array]}), holding the "
-                                    f"last turn's values; append a copy (`{array}.copy()`) or make a new array at "
-                                    "each turn", certain=True)]
-    return []
+                array, listed, verb = call.args[0].id, ast.unparse(call.func.value), "appends"
+            elif isinstance(call, ast.Assign) and len(call.targets) == 1 and isinstance(call.targets[0], ast.Subscript) \
+                    and isinstance(call.value, ast.Name) and isinstance(call.targets[0].value, ast.Name) \
+                    and call.targets[0].value.id in containers:
+                # (a list's or a dict's item holds the object; an array's item is written with its values, a copy)
+                array, listed, verb = call.value.id, call.targets[0].value.id, "stores"
+            else:
+                continue
+            if array in made_before and array in changed and array not in rebound:
+                copied = "append a copy" if verb == "appends" else "store a copy"
+                update = next((n for n in inside if isinstance(n, ast.AugAssign) and isinstance(n.target, ast.Name)
+                               and n.target.id == array), None)
+                fresh = f" (`{array} = {array} {_OPERATOR_TEXT.get(type(update.op), '?')} " \
+                        f"{ast.unparse(update.value)}`)" if update is not None and type(update.op) in _OPERATOR_TEXT else ""
+                found.append(Finding(name, _line(call), "one array is appended at every turn",
+                                     f"{name} (line {_line(call)}) {verb} `{array}` in `{listed}` at every turn of the "
+                                     f"loop, and line {changed[array]} changes `{array}` in place: every item it put in "
+                                     f"`{listed}` is that one array (made on line {made_before[array]}), holding the "
+                                     f"last turn's values; {copied} (`{array}.copy()`) or make a new array at each "
+                                     f"turn{fresh}", certain=True))
+                break   # (one per loop)
+    if len(found) > 1:   # (the same in several loops -- a walk to each side of a reference image: one finding)
+        others = " and ".join(str(f.line) for f in found[1:])
+        found[0] = replace(found[0], sentence=f"{found[0].sentence}; " + (f"lines {others} do the same" if len(found) > 2
+                                                                           else f"line {others} does the same"))
+    return found[:1]
 
 
 # ------------------------------------------------------------------ a running best overwritten

@@ -598,6 +598,9 @@ def _make_drop_conversion(node, payload):
 def _make_in_place(node, payload):
     if payload == "augment":   # x = x / s -> x /= s
         return ast.AugAssign(copy.deepcopy(node.targets[0]), node.value.op, copy.deepcopy(node.value.right))
+    if payload == "rebind":    # x @= s -> x = x @ s: a new array, the one kept before left as it was
+        target = copy.deepcopy(node.target)
+        return ast.Assign([target], ast.BinOp(ast.Name(target.id, ast.Load()), node.op, copy.deepcopy(node.value)))
     if payload == "array":     # np.array(x, ...) copies, np.asarray(x, ...) does not
         new = copy.deepcopy(node)
         new.func = _name("np.asarray")
@@ -6068,6 +6071,28 @@ def _in_place_changes(node, words: _Words):
         verb = {ast.Add: "increased", ast.Sub: "decreased", ast.Mult: "multiplied", ast.Div: "divided"}[
             type(node.value.op)]
         yield "in_place", "augment", f"`{node.targets[0].id}` is {verb} in place (the caller's array changes)"
+    if words.student and isinstance(node, ast.AugAssign) and isinstance(node.target, ast.Name) \
+            and node.target.id in _stored_names(words.fn):
+        # (the student's code only: an array kept in a list, then updated in place -- `to_ref[k] = chain` and
+        # `chain @= step` on the next turn of the loop -- changes the one already kept: each item the same array)
+        yield "in_place", "rebind", ""
+
+
+def _stored_names(fn) -> set:
+    """Names whose value the function keeps in a container (`items[k] = x`, `items.append(x)`, `{k: x}`
+    as a value): the same object, not a copy."""
+    cached = getattr(fn, "_stored_names", None)
+    if cached is None:
+        cached = set()
+        for node in ast.walk(fn):
+            if isinstance(node, ast.Assign) and isinstance(node.value, ast.Name) \
+                    and any(isinstance(target, ast.Subscript) for target in node.targets):
+                cached.add(node.value.id)
+            elif isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) \
+                    and node.func.attr in ("append", "insert") and node.args and isinstance(node.args[-1], ast.Name):
+                cached.add(node.args[-1].id)
+        fn._stored_names = cached
+    return cached
 
 
 def _placed(sentence: str, place: str) -> str:

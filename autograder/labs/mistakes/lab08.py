@@ -1213,6 +1213,16 @@ MISTAKES = {
                 cv2.line(canvas, start, end, colour, 1)
             return canvas
         """, ["changing `tuple(np.random.randint(0, 256, 3))` to `tuple(map(int, np.random.randint(0, 256, 3)))`"]),
+    # the blind set 1205d's 08/06: each band the level less its own blur (a difference of Gaussians at one scale)
+    "blend_multiband's bands made as a level less its own Gaussian blur": ("lab08.ext3", """
+        def _laplacian_pyramid(image, levels):
+            gaussian = _gaussian_pyramid(image, levels)
+            bands = []
+            for level in gaussian[:-1]:
+                blurred = cv2.GaussianBlur(level, (5, 5), 0)
+                bands.append(level - blurred)
+            return bands + [gaussian[-1]]
+        """, ["`level - blurred`, a level less its own blur"]),
 }
 
 
