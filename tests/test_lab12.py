@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from autograder.engine.runner import grade
-from autograder.labs.mistakes.lab12 import MISTAKES
-from conftest import (THREE_ROW_TRIANGULATION, assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results,
+from autograder.labs.mistakes.lab12 import ADVICE, MISTAKES
+from conftest import (THREE_ROW_TRIANGULATION, assert_advice_case, assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results,
                       mutant)
 
 MODULE = "lab12_stereo"
@@ -112,6 +112,12 @@ def test_structured_light_fixture_round_trip():
 @pytest.mark.xdist_group("lab12")
 def test_mistake_is_caught_and_named(case):
     assert_mistake_named(MODULE, *MISTAKES[case])
+
+
+@pytest.mark.parametrize("case", sorted(ADVICE))
+@pytest.mark.xdist_group("lab12")
+def test_convention_is_advice_not_points(case):
+    assert_advice_case(MODULE, *ADVICE[case])
 
 
 # Realistic correct variants that must keep full marks.

@@ -1171,3 +1171,16 @@ MISTAKES = {
             return points[0] if single else points
         """, ["is in front of both cameras", "look at the test that decides which points are behind"]),
 }
+
+
+# Conventions the API leaves open: a tip, no point lost.
+ADVICE = {
+    # the blind set 1205d's 12/04: T used as given, where OpenCV's calibration gives a (3, 1) column
+    "rectify taking T only as a flat (3,) vector": ("lab12.ex3", """
+        _rectify_flat = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            T = np.asarray(T, dtype=np.float64)
+            np.cross(T, [0.0, 0.0, 1.0])   # (a (3, 1) column has no cross product with a 3-vector)
+            return _rectify_flat(img_l, img_r, K1, K2, R, T)
+        """, ["with T of shape (3, 1) raised", "np.ravel(T)"]),
+}
