@@ -946,9 +946,26 @@ def fail_if_front_points_not_given(t: Trial, what: str, got, expected, P1, P2):
         return
     front = (_depths(P1, expected) > 0) & (_depths(P2, expected) > 0)
     if front[lost].all():
+        # (what the points given NaN share, of the tests a student writes for "behind": P's third row alone,
+        # whose sign is the depth's only for P at a positive scale; the disparity's sign; Z in camera 1)
+        homogeneous = np.column_stack([expected, np.ones(len(expected))])
+        third = [homogeneous @ np.asarray(P, np.float64)[2] for P in (P1, P2)]
+        pts1 = (homogeneous @ np.asarray(P1, np.float64).T)
+        pts2 = (homogeneous @ np.asarray(P2, np.float64).T)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            disparity = pts1[:, 0] / pts1[:, 2] - pts2[:, 0] / pts2[:, 2]
+        rules = {"the third coordinate of P X is <= 0 in one of the cameras (P's third row alone gives the depth "
+                 "only for a P of positive scale: the depth is that coordinate times the sign of det(P[:, :3]), "
+                 "and P is defined up to a scale, sign included)": (third[0] <= 0) | (third[1] <= 0),
+                 "the disparity x1 - x2 is <= 0 (its sign says which side camera 2 is on, not whether a point "
+                 "is in front: the depth in each camera does)": ~(disparity > 0),
+                 "Z <= 0 in the world frame (camera 1's frame only when camera 1 is [I | 0])": expected[:, 2] <= 0}
+        shared = next((words for words, rule in rules.items() if np.array_equal(rule, lost)), "")
         t.fail(measured(f"{what} returned NaN or infinite values for {lost.sum()} of the {len(got)} points, and "
                         f"each of those {lost.sum()} is in front of both cameras (a positive depth in each): NaN "
-                        "is for a point behind a camera; look at the test that decides which points are behind"),
+                        "is for a point behind a camera; " + (f"they are exactly the points where {shared}" if shared
+                                                              else "look at the test that decides which points are "
+                                                                   "behind")),
                mistake="points in front of both cameras given NaN")
 
 

@@ -667,6 +667,11 @@ def triangulate_property(t):
 
     t.for_all(st.tuples(st.integers(0, 2**32 - 1), st.sampled_from((15, 1))), holds, max_examples=12,
               describe=lambda c: f"fixtures.lab12.general_points(seed={c[0]}, n={c[1]})")
+    # (a camera matrix is defined up to a non-zero scale, sign included: -P1 is the same camera -- a test of
+    # "in front" read off P's third row without the sign of det(P[:, :3]) takes every point for behind it)
+    P1, P2, X, pts1, pts2 = truth.general_points(7, n=15)
+    judge_triangulation(t, "triangulate(-P1, -0.5 * P2, pts1, pts2) (the same cameras at a negative scale)",
+                        t.call("triangulate", -P1, -0.5 * P2, pts1, pts2), -P1, -0.5 * P2, pts1, pts2, X)
 
 
 @ex1.check("triangulate is as accurate as linear triangulation on noisy matches", points=2)

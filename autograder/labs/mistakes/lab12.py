@@ -1169,7 +1169,18 @@ MISTAKES = {
                     X = np.full(3, np.nan)
                 points[i] = X
             return points[0] if single else points
-        """, ["is in front of both cameras", "look at the test that decides which points are behind"]),
+        """, ["is in front of both cameras", "exactly the points where the disparity x1 - x2 is <= 0"]),
+    # the blind set 1205e's 12/01: "behind" read off P's third row alone, without the sign of det(P[:, :3])
+    "triangulate giving NaN where P's third row is negative, whatever P's sign": ("lab12.ex1", """
+        _triangulate_all = triangulate
+        def triangulate(P1, P2, pts1, pts2):
+            X = _triangulate_all(P1, P2, pts1, pts2)
+            Xh = np.column_stack([np.reshape(X, (-1, 3)), np.ones(np.reshape(X, (-1, 3)).shape[0])])
+            behind = (Xh @ np.asarray(P1)[2] <= 0) | (Xh @ np.asarray(P2)[2] <= 0)
+            X = np.array(X, dtype=np.float64)
+            X.reshape(-1, 3)[behind] = np.nan
+            return X
+        """, ["the same cameras at a negative scale", "the third coordinate of P X is <= 0"]),
 }
 
 
