@@ -3181,6 +3181,26 @@ def simulate_not_in_front(t):
                "inside the projector)"))
 
 
+@ex6.advice("simulate_structured_light leaves NaN depths black, as it does Z <= 0")
+def simulate_nan_depth(t):
+    """The skeleton marks "nothing there" with Z <= 0; a depth map from a sensor or a triangulation marks it
+    with NaN too (NaN <= 0 is False). Worth no points: a tip where NaN pixels raise or are lit."""
+    depth, f, baseline = truth.structured_light_scene("boxes")
+    depth = np.array(depth, dtype=np.float64)
+    depth[20:30] = np.nan
+    n_bits = 6
+    what = f"simulate_structured_light(depth, f={f:g}, baseline={baseline:g}, n_bits={n_bits}) with rows 20-29 NaN"
+    try:
+        got = t.call("simulate_structured_light", depth.copy(), f, baseline, n_bits)
+    except StudentFailure as failure:
+        t.advise(measured(f"{what} raised ({failure.message.splitlines()[0]}): NaN says no depth, as Z <= 0 does, "
+                          "and NaN <= 0 is False; test `not (Z > 0)` (or np.isfinite) to leave those pixels black"))
+        return
+    if isinstance(got, np.ndarray) and got.shape == (n_bits,) + depth.shape and np.any(got[:, 20:30] > 0):
+        t.advise(measured(f"{what} lights some of the NaN rows: NaN says no depth, as Z <= 0 does, and NaN <= 0 is "
+                          "False; test `not (Z > 0)` (or np.isfinite) to leave those pixels black"))
+
+
 # A projector as wide as a 320-pixel image has columns above 255: a column kept in 8 bits (uint8)
 # wraps round there (256 -> 0), and a negative one (off the projector, black) to 256 + column.
 WIDE_DEPTH = np.hstack([np.full((24, 40), 6.0), np.full((24, 280), 3.0)])   # disparities 10 and 20 px

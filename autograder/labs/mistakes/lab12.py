@@ -1194,4 +1194,12 @@ ADVICE = {
             np.cross(T, [0.0, 0.0, 1.0])   # (a (3, 1) column has no cross product with a 3-vector)
             return _rectify_flat(img_l, img_r, K1, K2, R, T)
         """, ["with T of shape (3, 1) raised", "np.ravel(T)"]),
+    # the blind set 1205e's 12/05: "nothing there" tested with Z <= 0 alone, NaN going on to int(floor(nan))
+    "simulate_structured_light raising on NaN depths": ("lab12.ex6", """
+        _simulate_finite = simulate_structured_light
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            depth = np.asarray(depth, dtype=np.float64)
+            [int(np.floor(z)) for z in depth.ravel() if not z <= 0]   # (NaN is not <= 0)
+            return _simulate_finite(depth, f, baseline, n_bits)
+        """, ["rows 20-29 NaN raised", "np.isfinite"]),
 }
