@@ -5135,3 +5135,43 @@ def test_a_square_written_where_a_power_of_two_belongs_is_told_base_and_exponent
                                                          "k = (u * int(n_bits) ** 2) // int(width)"))
     said = " ".join(failing_messages(folder, "lab12.ex6"))
     assert "changing `int(n_bits) ** 2` to `2 ** int(n_bits)`" in said, said
+
+
+def test_slips_of_the_blind_sets_1205d_and_1205e_are_changes_tried():
+    """The student's code only: a bit string read as a decimal number (`int("".join(bits))`), points made
+    columns by a reshape (`pts.reshape(3, -1)` where the transpose belongs, kept 2-D for one point), a
+    running product kept in a list and updated in place (`chain @= step` after `out[k] = chain`), and a
+    shift padded on the left then cut back at its start (`np.pad(...)[:, d:]`)."""
+    student, mutants = _read("""
+        import numpy as np
+
+        def graded(bits, pts, steps, R, d):
+            code = int("".join("1" if b else "0" for b in bits))
+            cols = pts.reshape(3, -1)
+            out = [None] * len(steps)
+            chain = np.eye(3)
+            for k, step in enumerate(steps):
+                chain @= step
+                out[k] = chain
+            shifted = np.pad(R, ((0, 0), (d, 0)))[:, d:]
+            total = 0
+            total += code
+            return code, cols, out, shifted, total
+    """)
+    changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None}
+    assert any(after.endswith(", 2)") and after.startswith("int(") for _, after in changes), changes
+    assert ("pts.reshape(3, -1)", "pts.reshape(-1, 3).T") in changes, changes
+    assert ("chain @= step", "chain = chain @ step") in changes, changes
+    assert ("np.pad(R, ((0, 0), (d, 0)))[:, d:]", "np.pad(R, ((0, 0), (d, 0)))[:, :-d or None]") in changes, changes
+    assert ("total += code", "total = total + code") not in changes, changes   # (kept in no list: not tried)
+
+
+def test_each_small_whole_number_of_a_call_is_enlarged_alone_among_the_confirmations():
+    """`max(2 ** n, width)` mends `min(2 ** n, width)` wherever every width is below 2 ** n (the blind set
+    1205e's 12/04, told so before): a confirmation with the width alone made larger turns their order round."""
+    made = repair._one_enlarged(("gray_code_patterns", (2, 2), {"scale": 3, "flag": True, "f": 2.0}))
+    assert ("gray_code_patterns", (8, 2), {"scale": 3, "flag": True, "f": 2.0}) in made
+    assert ("gray_code_patterns", (2, 8), {"scale": 3, "flag": True, "f": 2.0}) in made
+    assert ("gray_code_patterns", (2, 2), {"scale": 12, "flag": True, "f": 2.0}) in made
+    assert len(made) == 3   # (a flag and a float stay as they are)
+    assert repair._one_enlarged(("f", (640, 0), {})) == []   # (large numbers and 0: none)

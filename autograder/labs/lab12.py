@@ -522,9 +522,26 @@ def _moved_words(dx: int, dy: int, how: str = "") -> str:
     return " and ".join(part for part in parts if part)
 
 
+MIRRORED_ROWS = "each row of the map is stored mirrored, left to right"
+
+
+def name_mirrored_rows(t: Trial, what: str, got, gt, threshold, allowed: float, better: float = 0.5):
+    """Fail naming :data:`MIRRORED_ROWS` where the map read right to left is right (within ``allowed``) and
+    far better than as it is (``better`` times its bad-pixel rate at most): a path collected from the last
+    column backwards, stored without reversing."""
+    finite = np.nan_to_num(np.asarray(got, np.float64), nan=0.0, posinf=0.0, neginf=0.0)
+    mirrored = truth.bad_pixel_rate(finite[:, ::-1], gt, threshold)
+    if mirrored <= allowed and mirrored < better * truth.bad_pixel_rate(finite, gt, threshold):
+        t.fail(measured(f"{what}: every row is mirrored: read right to left, your map has a bad-pixel rate of "
+                        f"{mirrored:.1%}, so column x holds the disparity of column W - 1 - x (a path collected "
+                        "from the last column back to the first is in reverse order: reverse it, [::-1], before "
+                        "storing it as the row)"), mistake=MIRRORED_ROWS)
+
+
 def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=None, mistakes=None):
     gt, thr = (scene.judged if judged is None else judged), scene.threshold
     finite = np.nan_to_num(got.astype(np.float64), nan=0.0, posinf=0.0, neginf=0.0)
+    name_mirrored_rows(t, what, finite, gt, thr, allowed)
     if truth.bad_pixel_rate(-finite, gt, thr) <= allowed:
         t.fail(f"{what}: the disparities are negative. d = x_l - x_r is positive: the match "
                "of left pixel x lies at x - d in the right image.", mistake="the disparities are negative")
@@ -2563,6 +2580,14 @@ def judge_last_column(t: Trial, what: str, got, scene):
     # all over (a broken data cost) is wrong at its last column too, and is judged as a whole
     stands_out = truth.bad_pixel_rate(got, scene.judged, scene.threshold) <= 0.5 * bad
     if bad > LAST_COLUMN_TOLERANCE and stands_out:
+        # (a row stored right to left is wrong at its last column first, on a scene of one disparity per row:
+        # there, read right to left, the last column is right and the map no worse)
+        flipped = got[truth.JUDGE_BORDER:-truth.JUDGE_BORDER, 0]
+        with np.errstate(invalid="ignore"):
+            flipped_good = np.isfinite(flipped) & (flipped > 0) & (np.abs(flipped - truth_column) <= scene.threshold)
+        if 1.0 - float(flipped_good[known].mean()) <= LAST_COLUMN_TOLERANCE:
+            name_mirrored_rows(t, what, got, scene.judged, scene.threshold,
+                               truth.bad_pixel_rate(np.nan_to_num(got), scene.judged, scene.threshold), better=1.0 + 1e-9)
         values = np.unique(np.round(column[known], 2))
         shown = ", ".join(f"{v:g}" for v in values[:3]) + (", ..." if len(values) > 3 else "")
         # measured: the map's last column, where every backtracking starts, whatever the code does there

@@ -68,6 +68,7 @@ OPERATORS = {
     "stack_kind": ("stack", "concatenat", "axis"),     # np.stack(pieces) -> np.concatenate(pieces)
     "drop_mask": ("mask", "& 1", "bit"),               # (g >> s) & 1 -> g >> s
     "reshape_transpose": ("reshape", "transpos"),      # X.T -> X.reshape(X.shape[::-1])
+    "int_base": ("base", "binary", "decimal", "int("),   # (student only) int("".join(bits)) -> int(..., 2)
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
     "own_values": ("each", "own", "per", "whole"),     # total / weights.max() -> total / weights[..., None]
@@ -614,7 +615,31 @@ def _make_drop_centring(node, payload):
     return copy.deepcopy(node.left)   # x - mean -> x
 
 
+def _makes_text(node) -> bool:
+    """Whether ``node`` makes a string: `"".join(...)`, an f-string, `str(...)`, a sum of strings."""
+    if isinstance(node, ast.JoinedStr) or (isinstance(node, ast.Constant) and isinstance(node.value, str)):
+        return True
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "join" \
+            and isinstance(node.func.value, ast.Constant) and isinstance(node.func.value.value, str):
+        return True
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "str":
+        return True
+    return isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add) and (_makes_text(node.left) or _makes_text(node.right))
+
+
+def _make_int_base(node, payload):
+    new = copy.deepcopy(node)   # int("".join(bits)) -> int("".join(bits), 2)
+    new.args = [*new.args, ast.Constant(payload)]
+    return new
+
+
 def _make_reshape_order(node, payload):
+    if payload == "transpose":   # x.reshape(3, -1) -> x.reshape(-1, 3).T (the student's code: the transposed shape
+        #                            for a transpose; still 2-D for a single point)
+        new = copy.deepcopy(node)
+        new.args = [ast.Tuple(list(reversed(new.args[0].elts)), ast.Load())] if len(new.args) == 1 \
+            else list(reversed(new.args))
+        return ast.Attribute(new, "T", ast.Load())
     new = copy.deepcopy(node)   # x.reshape(3, 4) -> x.reshape(3, 4, order="F")
     new.keywords = [k for k in new.keywords if k.arg != "order"] + [ast.keyword("order", ast.Constant(payload))]
     return new
@@ -1500,7 +1525,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
-         "reshape_transpose": _make_reshape_transpose, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -6233,7 +6258,17 @@ def _call_changes(node: ast.Call, words, what, parents):
         other = "degrees" if unit == "radians" else "radians"
         yield "degrees", "remove", f"{arg or 'the angle'} is used in {other} where {unit} are needed " \
                                    f"(the conversion `{dotted}` is missing)"
+    if words.student and dotted == "int" and len(node.args) == 1 and not node.keywords and _makes_text(node.args[0]):
+        # (the student's code only: a string of bits read as a decimal number -- `int("".join(bits))` where
+        # `int(..., 2)` belongs: "1010" is ten hundred and ten)
+        yield "int_base", 2, ""
     method = node.func.attr if isinstance(node.func, ast.Attribute) else ""   # x.reshape, np.reshape(x, ...)
+    if words.student and method == "reshape" and not dotted.startswith(("np.", "numpy.")) \
+            and (len(node.args) == 2 or (len(node.args) == 1 and isinstance(node.args[0], ast.Tuple)
+                                         and len(node.args[0].elts) == 2)) and not node.keywords:
+        # (the student's code only: a 2-D array reshaped to the transposed shape where it is transposed --
+        # `pts.reshape(3, -1)` for the points as columns mixes their coordinates; .T moves them)
+        yield "reshape_order", "transpose", ""
     if method in _ORDERED and not any(k.arg == "order" for k in node.keywords):
         array = what(node.args[0]) if dotted.startswith(("np.", "numpy.")) and node.args else what(node.func.value)
         yield "reshape_order", "F", f"{array or 'an array'} is {_ORDERED[method]} column by column " \

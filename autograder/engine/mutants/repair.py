@@ -2308,6 +2308,18 @@ def _widened(call, defaults=(), factors=(4.0,)) -> list:
     return made
 
 
+def _one_enlarged(call, factor: int = 4, largest: int = 16) -> list:
+    """The call with each of its small whole numbers (1 to ``largest``) alone made ``factor`` times larger,
+    the others as they were: a change right by a coincidence between two of them -- `max(2 ** n, width)`
+    for `min(2 ** n, width)` where the check's widths are all below 2 ** n -- is wrong where their order
+    turns round. ([] when the call has none.)"""
+    function, args, kwargs = call
+    small = lambda value: isinstance(value, int) and not isinstance(value, bool) and 1 <= value <= largest  # noqa: E731
+    made = [(function, args[:k] + (value * factor,) + args[k + 1:], kwargs) for k, value in enumerate(args) if small(value)]
+    made += [(function, args, {**kwargs, name: value * factor}) for name, value in kwargs.items() if small(value)]
+    return made
+
+
 # the colour's position among an OpenCV drawing function's arguments
 _COLOUR_AT = DRAWING_COLOUR_AT
 
@@ -3633,7 +3645,7 @@ class _Variants:
                                              self.model.defaults.get(self.function, ()))
                 widened = _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
                 self.widened.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(widened)))
-                variants += widened
+                variants += widened + _one_enlarged(self.inputs[i])
                 variants += _fewer(self.inputs[i]) + _single_point(self.inputs[i]) + _reordered(self.inputs[i]) \
                     + _points_moved(self.inputs[i])
                 variants += _rescaled(self.inputs[i], _up_to_scale(self.model.source).get(self.function, ()))

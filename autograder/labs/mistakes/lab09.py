@@ -981,6 +981,17 @@ MISTAKES = {
             rms, K, dist, _, _ = cv2.calibrateCamera(seen, found_corners, (w, h), None, None)
             return K, dist.ravel()[:5], float(rms)
         """, ["changing `np.zeros((rows * cols, 3))` to `np.zeros((rows * cols, 3), dtype=np.float32)`"]),
+    # the blind set 1205e's 09/03: the points made columns by reshaping them, where the transpose belongs
+    "project_with_intrinsics making columns with reshape(3, -1)": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            pts = np.asarray(points, dtype=np.float64)
+            single = pts.ndim == 1
+            uvw = np.asarray(K, dtype=np.float64) @ pts.reshape(3, -1)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                xy = uvw[:2] / uvw[2]
+            xy[:, uvw[2] <= 0] = np.nan
+            return xy.T[0] if single else xy.T
+        """, ["to `pts.reshape(-1, 3).T`"]),
 }
 
 

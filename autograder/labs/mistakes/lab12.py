@@ -1134,6 +1134,21 @@ MISTAKES = {
         def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
             return _dp_right(left, right, max_disparity, block_size, 0.02 if smoothness is None else smoothness)
         """, ["the default smoothness penalty is too weak"]),
+    # the blind set 1205e's 12/03: each row's backtracked path stored as collected, from the last column
+    "dp_stereo storing each row's path without reversing it": ("lab12.ex5", """
+        _dp_right = dp_stereo
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            return _dp_right(left, right, max_disparity, block_size, smoothness)[:, ::-1].copy()
+        """, ["every row is mirrored"]),
+    # the blind set 1205e's 12/04: the stripes capped at the width, where 2 ** n_bits belongs
+    "gray_code_patterns with at most as many stripes as columns": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            stripes = min(2 ** n_bits, width)
+            k = (np.arange(width) * stripes) // width
+            gray = k ^ (k >> 1)
+            shifts = np.arange(n_bits - 1, -1, -1)[:, None]
+            return (((gray[None, :] >> shifts) & 1) * 255).astype(np.uint8)
+        """, ["to `2 ** n_bits`"]),
     # the blind set 1205d's 12/02: the right image padded on the left, then cut back at its start (no shift)
     "block_matching shifting by np.pad then cutting the pad's columns off again": ("lab12.ex4", """
         _ncc_right = block_matching
