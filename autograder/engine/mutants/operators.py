@@ -68,7 +68,8 @@ OPERATORS = {
     "stack_kind": ("stack", "concatenat", "axis"),     # np.stack(pieces) -> np.concatenate(pieces)
     "drop_mask": ("mask", "& 1", "bit"),               # (g >> s) & 1 -> g >> s
     "reshape_transpose": ("reshape", "transpos"),      # X.T -> X.reshape(X.shape[::-1])
-    "int_base": ("base", "binary", "decimal", "int("),   # (student only) int("".join(bits)) -> int(..., 2)
+    "int_base": ("base", "binary", "decimal", "int("),
+    "loop_counter": ("index", "loop", "first", "every"),   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
     "own_values": ("each", "own", "per", "whole"),     # total / weights.max() -> total / weights[..., None]
@@ -613,6 +614,41 @@ def _make_in_place(node, payload):
 
 def _make_drop_centring(node, payload):
     return copy.deepcopy(node.left)   # x - mean -> x
+
+
+def _index_of_the_loop(node: ast.Subscript, parents):
+    """A fixed index where the loop's own belongs: `pts1[0, 1]` in a loop over `i` whose other reads of
+    `pts1` index that axis with `i` (`pts1[i, 0]`) -- a typo that makes every turn read the first item."""
+    loop = parents.get(id(node), (None,))[0]
+    while loop is not None and not isinstance(loop, ast.For):
+        loop = parents.get(id(loop), (None,))[0]
+    if loop is None or not isinstance(loop.target, ast.Name):
+        return
+    counter = loop.target.id
+    items = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+    for position, item in enumerate(items):
+        if not (isinstance(item, ast.Constant) and type(item.value) is int):
+            continue
+        # (the same array read at that position with the loop's index elsewhere in the loop)
+        if any(isinstance(other, ast.Subscript) and other is not node and isinstance(other.value, ast.Name)
+               and other.value.id == node.value.id and _index_at(other, position) == counter
+               for other in ast.walk(loop)):
+            yield "loop_counter", (position, counter), ""
+
+
+def _index_at(node: ast.Subscript, position: int) -> str:
+    items = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+    return items[position].id if position < len(items) and isinstance(items[position], ast.Name) else ""
+
+
+def _make_loop_counter(node, payload):
+    position, counter = payload   # pts1[0, 1] -> pts1[i, 1]
+    new = copy.deepcopy(node)
+    if isinstance(new.slice, ast.Tuple):
+        new.slice.elts[position] = ast.Name(counter, ast.Load())
+    else:
+        new.slice = ast.Name(counter, ast.Load())
+    return new
 
 
 def _makes_text(node) -> bool:
@@ -1525,7 +1561,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
-         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -2449,6 +2485,8 @@ def _changes(node, parents, words: _Words, line):
         loop = parents.get(id(parent), (None,))[0]
         if isinstance(loop, ast.For) and loop.iter is parent and isinstance(loop.target, ast.Name):
             yield from _counted_loop_changes(loop)
+    if words.student and isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name):
+        yield from _index_of_the_loop(node, parents)
     if words.student:
         yield from _student_changes(node, parent, parents, words)
         yield from _sibling_changes(node, words)
