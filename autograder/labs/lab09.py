@@ -26,7 +26,7 @@ from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (THIRD_COORDINATE, checklist, divides_by, evidenced, from_code, guard, guessed, look_at,
                              measured)
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
-from ..engine.hints import (Hint, Predicate, _resolved, _scope, call_in_a_loop, calls, code_of, expr, matmul_of, mentions,
+from ..engine.hints import (Hint, Predicate, _resolved, _scope, call_in_a_loop, calls, code_of, expr, keyword, matmul_of, mentions,
                             nan_behind)
 from ..engine.hints import _path as _hints_path
 from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canvas, call_probe, confirm, fingerprint,
@@ -998,12 +998,17 @@ def aperture_short_focal(t):
 
 TWO_PI = (expr("2 * np.pi") | expr("np.pi * 2") | expr("_ * 2 * np.pi") | expr("2.0 * np.pi") | expr("2 * math.pi")
           | expr("2 * pi") | mentions("np.tau") | mentions("math.tau")).saying("computes 2 pi")
+ANGLE_DRAWN = (calls("np.cos") & calls("np.sin")).saying("computes a cosine and a sine")
 UNIFORM_DISC_HINT = Hint(
     "draw the aperture point uniformly over the disc: radius = aperture * sqrt(u)",
     asks=calls("np.sqrt") | expr("_ ** 0.5"),
     instead="your code already {found}: " + checklist(
         "", ("u is uniform in [0, 1)", calls(".random") | calls(".uniform") | calls(".rand")),
-        ("the angle is uniform in [0, 2 pi)", TWO_PI),
+        # (code drawing no angle -- a normal vector made unit length, another recipe of a random direction -- is
+        # asked of its directions, not of an angle it does not have)
+        ("the angle is uniform in [0, 2 pi)", TWO_PI | ~ANGLE_DRAWN),
+        ("each direction is of unit length (a vector divided by its own norm, axis=-1, keepdims=True)",
+         ANGLE_DRAWN | keyword("np.linalg.norm", "axis")),
         ("the radius is aperture * sqrt(u)", expr("_ * np.sqrt(_)") | expr("np.sqrt(_) * _") | expr("_ * _ ** 0.5")
          | expr("_ ** 0.5 * _") | expr("_ * np.sqrt(_)[:, None]")),
         none_left=look_at(("how the angle and the radius become the two coordinates (r cos t, r sin t)",

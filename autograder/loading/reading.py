@@ -250,6 +250,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _value_of_an_earlier_loop(name, function)
     found += _running_halves(name, function)
     found += _norm_of_every_pair_at_once(name, function)
+    found += _whole_norm_divides_vectors(name, function)
     found += _singular_vectors_unused(name, function)
     found += _zeros_solved_for(name, function)
     found += _fundamental_as_essential(name, function)
@@ -1819,6 +1820,48 @@ def _norm_of_every_pair_at_once(name, function) -> list[Finding]:
                             f"of the whole difference, one number, so `{ast.unparse(node)}` (line {_line(node)}) is "
                             "one True or False for all the pairs; axis=1 gives each row's distance",
                             certain=True)]
+    return []
+
+
+_DRAWN_WITH_A_SHAPE = frozenset({"standard_normal", "normal", "randn", "rand", "random", "uniform", "empty", "zeros",
+                                 "ones", "full"})
+
+
+def _shape_of_two_or_more(call: ast.Call) -> bool:
+    """Whether a NumPy maker or random draw is given a shape of two axes or more (`rng.standard_normal((n, k, 2))`,
+    `np.random.randn(n, 2)`, `rng.uniform(-1, 1, size=(n, 2))`)."""
+    shapes = [k.value for k in call.keywords if k.arg in ("size", "shape")]
+    if _call_name(call) in ("standard_normal", "random", "empty", "zeros", "ones", "full", "rand") and call.args:
+        shapes.append(call.args[0])
+    if _call_name(call) in ("randn", "rand") and len(call.args) >= 2:
+        return True
+    return any(isinstance(shape, (ast.Tuple, ast.List)) and len(shape.elts) >= 2 for shape in shapes)
+
+
+def _whole_norm_divides_vectors(name, function) -> list[Finding]:
+    """``d = rng.standard_normal((n, k, 2))`` then ``d / np.linalg.norm(d)`` (or ``d /= ...``), no axis: the
+    norm of the whole array, one number, where each vector's own belongs -- no vector comes out of unit length."""
+    made = {}
+    for node in _nodes(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and isinstance(node.value, ast.Call) and _call_name(node.value) in _DRAWN_WITH_A_SHAPE \
+                and _shape_of_two_or_more(node.value):
+            made[node.targets[0].id] = node
+    for node in _nodes(function):
+        divided, norm = None, None
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div):
+            divided, norm = node.left, node.right
+        elif isinstance(node, ast.AugAssign) and isinstance(node.op, ast.Div):
+            divided, norm = node.target, node.value
+        if isinstance(divided, ast.Name) and divided.id in made and isinstance(norm, ast.Call) \
+                and _call_name(norm) == "norm" and _attribute_path(norm.func).startswith(("np.linalg", "numpy.linalg")) \
+                and len(norm.args) == 1 and not norm.keywords and isinstance(norm.args[0], ast.Name) \
+                and norm.args[0].id == divided.id:
+            return [Finding(name, _line(node), "every vector divided by the norm of the whole array",
+                            f"{name} (line {_line(node)}) divides `{divided.id}` (made with a shape of several axes on "
+                            f"line {_line(made[divided.id])}) by `{ast.unparse(norm)}`: without an axis that is the "
+                            "norm of the whole array, one number, so no vector comes out of unit length; give each "
+                            f"its own, `np.linalg.norm({divided.id}, axis=-1, keepdims=True)`", certain=True)]
     return []
 
 

@@ -69,7 +69,8 @@ OPERATORS = {
     "drop_mask": ("mask", "& 1", "bit"),               # (g >> s) & 1 -> g >> s
     "reshape_transpose": ("reshape", "transpos"),      # X.T -> X.reshape(X.shape[::-1])
     "int_base": ("base", "binary", "decimal", "int("),
-    "loop_counter": ("index", "loop", "first", "every"),   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
+    "loop_counter": ("index", "loop", "first", "every"),
+    "shape_reversed": ("shape", "width", "height", "channel"),   # (student only) img.shape[::-1] -> img.shape[1::-1]   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
     "own_values": ("each", "own", "per", "whole"),     # total / weights.max() -> total / weights[..., None]
@@ -648,6 +649,12 @@ def _make_loop_counter(node, payload):
         new.slice.elts[position] = ast.Name(counter, ast.Load())
     else:
         new.slice = ast.Name(counter, ast.Load())
+    return new
+
+
+def _make_shape_reversed(node, payload):
+    new = copy.deepcopy(node)   # img.shape[::-1] -> img.shape[1::-1]
+    new.slice = ast.Slice(ast.Constant(1), None, ast.UnaryOp(ast.USub(), ast.Constant(1)))
     return new
 
 
@@ -1561,7 +1568,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
-         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -2487,6 +2494,14 @@ def _changes(node, parents, words: _Words, line):
             yield from _counted_loop_changes(loop)
     if words.student and isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name):
         yield from _index_of_the_loop(node, parents)
+    if words.student and isinstance(node, ast.Subscript) and isinstance(node.value, ast.Attribute) \
+            and node.value.attr == "shape" and isinstance(node.slice, ast.Slice) and node.slice.lower is None \
+            and node.slice.upper is None and isinstance(node.slice.step, ast.UnaryOp) \
+            and isinstance(node.slice.step.op, ast.USub) and isinstance(node.slice.step.operand, ast.Constant) \
+            and node.slice.step.operand.value == 1:
+        # (the student's code only: an image's whole shape reversed for OpenCV's (width, height) -- (3, W, H) for a
+        # colour image -- where its first two belong, `shape[1::-1]`)
+        yield "shape_reversed", None, ""
     if words.student:
         yield from _student_changes(node, parent, parents, words)
         yield from _sibling_changes(node, words)

@@ -2615,6 +2615,28 @@ def _small(call) -> list:
     return [made] if changed else []
 
 
+def _greyed(call) -> list:
+    """The call with every 8-bit BGR image (H, W, 3) made grey (as cv2.cvtColor does), in a list of images too ([] when
+    it has none): the API takes grey images wherever it takes colour ones, and a change that mends a colour
+    call by reading past the channels -- `image[0].shape[::-1]` for `images[0].shape[::-1]`, a row's shape --
+    fails on grey ones."""
+    function, args, kwargs = call
+
+    def grey(value, depth=0):
+        if isinstance(value, np.ndarray) and value.dtype == np.uint8 and value.ndim == 3 and value.shape[2] == 3 \
+                and min(value.shape[:2]) > 8:
+            # (cv2.COLOR_BGR2GRAY's weights)
+            return np.round(value.astype(np.float64) @ np.array([0.114, 0.587, 0.299])).astype(np.uint8)
+        if isinstance(value, (list, tuple)) and depth == 0 and value:
+            made = [grey(v, 1) for v in value]
+            return type(value)(made) if any(m is not v for m, v in zip(made, value)) else value
+        return value
+
+    made = (function, tuple(grey(a) for a in args), {k: grey(v) for k, v in kwargs.items()})
+    changed = any(a is not b for a, b in zip(made[1], args)) or any(made[2][k] is not kwargs[k] for k in kwargs)
+    return [made] if changed else []
+
+
 def _turned(call) -> list:
     """The call with every 8-bit image that is not square (both sides above 20 pixels) turned a quarter
     (np.rot90: a landscape image made portrait), images of one shape alike ([] when it has none)."""
@@ -3668,6 +3690,7 @@ class _Variants:
             turned = _turned(self.inputs[failing[0]])
             self.turned = set(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(turned)))
             variants += turned
+            variants += _greyed(self.inputs[failing[0]])   # (the same images, grey: the API takes both)
             # (and the values the check chose given otherwise: whole numbers made fractional, 0/1 masks soft)
             beyond = [call for i in failing[:2]
                       for call in _beyond(self.inputs[i], self.model.defaults.get(self.function, ()))]
