@@ -218,6 +218,17 @@ def another_block_tested(functions) -> str:
             if isinstance(call, ast.Call) and _path(call.func).endswith("det") and call.args \
                     and isinstance(call.args[0], ast.Subscript) and not left_three(call.args[0].slice):
                 return ast.unparse(call)
+    # (or the sign of one entry, `if P[2, 2] < 0: P = -P`: an entry's sign is no determinant's)
+    for branch in (n for f in functions for n in ast.walk(f) if isinstance(n, ast.If)):
+        test = branch.test
+        negates = any(isinstance(s, ast.Assign) and isinstance(s.value, ast.UnaryOp) and isinstance(s.value.op, ast.USub)
+                      or isinstance(s, ast.AugAssign) and isinstance(s.op, ast.Mult)
+                      and isinstance(s.value, (ast.UnaryOp, ast.Constant)) for s in branch.body)
+        if negates and isinstance(test, ast.Compare) and len(test.ops) == 1 and isinstance(test.left, ast.Subscript) \
+                and isinstance(test.left.slice, ast.Tuple) and len(test.left.slice.elts) == 2 \
+                and all(isinstance(e, ast.Constant) for e in test.left.slice.elts) \
+                and isinstance(test.comparators[0], ast.Constant) and test.comparators[0].value == 0:
+            return ast.unparse(test)
     return ""
 
 
@@ -641,9 +652,10 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
     problems, labels = [], []
     negative = np.linalg.det(np.asarray(P, float)[:, :3]) < 0
     # a P the code negates (det < 0) leaves RQ's own sign ambiguity as the cause, as for det > 0
-    unnegated = negative and not NEGATES_P.found(code_of(t).reachable(["decompose_camera_matrix"]))
-    sign_fix = SIGN_FIX.said(t)
     other_block = another_block_tested(code_of(t).reachable(["decompose_camera_matrix"]))
+    # (code that negates P under a test of something else -- another block, one entry's sign -- does negate it)
+    unnegated = negative and not NEGATES_P.found(code_of(t).reachable(["decompose_camera_matrix"])) and not other_block
+    sign_fix = SIGN_FIX.said(t)
     K_scale = magnitude(K)
     triangular = np.abs(np.tril(K, -1)).max() <= at_precision(1e-6 * np.abs(K).max(), K_scale)
     if not triangular:

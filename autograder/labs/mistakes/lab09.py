@@ -992,6 +992,35 @@ MISTAKES = {
             xy[:, uvw[2] <= 0] = np.nan
             return xy.T[0] if single else xy.T
         """, ["to `pts.reshape(-1, 3).T`"]),
+    # the blind set 1205e's 09/06: the OpenCV tutorial's image size, the whole shape reversed ((3, W, H) in colour)
+    "calibrate sizing the image by its whole shape reversed": ("lab09.ext1", """
+        def calibrate(images, pattern_size, square_size):
+            cols, rows = pattern_size
+            objp = np.zeros((cols * rows, 3), np.float32)
+            objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size
+            object_points, image_points = [], []
+            for image in images:
+                grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+                found, corners = cv2.findChessboardCorners(grey, (cols, rows))
+                if found:
+                    criteria = (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3)
+                    image_points.append(cv2.cornerSubPix(grey, corners, (5, 5), (-1, -1), criteria))
+                    object_points.append(objp)
+            size = images[0].shape[::-1]
+            rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, size, None, None)
+            return K, dist.ravel()[:5], float(rms)
+        """, ["to `images[0].shape[1::-1]`"]),
+    # the blind set 1205e's 09/02: random directions divided by the norm of the whole array
+    "simulate_aperture normalising every direction by the whole array's norm": ("lab09.ex4", """
+        def simulate_aperture(points, f, aperture, n_rays=100, seed=0):
+            X = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+            rng = np.random.default_rng(seed)
+            direction = rng.standard_normal((len(X), n_rays, 2))
+            direction = direction / np.linalg.norm(direction)
+            radius = aperture * np.sqrt(rng.uniform(0.0, 1.0, size=(len(X), n_rays, 1)))
+            ideal = f * X[:, :2] / X[:, 2:]
+            return ideal[:, None, :] - radius * direction * (1.0 + f / X[:, 2])[:, None, None]
+        """, ["that is the norm of the whole array", "axis=-1, keepdims=True"]),
 }
 
 
