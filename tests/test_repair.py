@@ -5175,3 +5175,36 @@ def test_each_small_whole_number_of_a_call_is_enlarged_alone_among_the_confirmat
     assert ("gray_code_patterns", (2, 2), {"scale": 12, "flag": True, "f": 2.0}) in made
     assert len(made) == 3   # (a flag and a float stay as they are)
     assert repair._one_enlarged(("f", (640, 0), {})) == []   # (large numbers and 0: none)
+
+
+def test_more_slips_of_the_blind_set_1205e_are_changes_tried():
+    """A last column kept 2-D where the flat one belongs (`P[:, 3:]` added to rows), every entry counted
+    where the points' count belongs (`pts.size`), a helper's pair kept whole where the module unpacks it,
+    a fixed index where the loop's own belongs, an image's whole shape reversed for (width, height)."""
+    student, mutants = _read("""
+        import numpy as np
+
+        def _points(points):
+            X = np.asarray(points, dtype=float)
+            return X.reshape(-1, 3), X.ndim == 1
+
+        def other(points):
+            X, single = _points(points)
+            return X
+
+        def graded(P, points, image):
+            X = _points(points)
+            Y, _ = _points(points)
+            p4 = P[:, 3:]
+            z = Y[:, 2].sum() / Y.size
+            rows = []
+            for i in range(len(Y)):
+                rows.append((Y[i, 0], Y[0, 1]))
+            return X, Y @ P[:, :3].T + p4, z, rows, image.shape[::-1]
+    """, api=("graded", "other"))
+    changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None}
+    assert ("p4 = P[:, 3:]", "p4 = P[:, 3]") in changes, changes
+    assert ("Y[:, 2].sum() / Y.size", "Y[:, 2].sum() / len(Y)") in changes, changes
+    assert ("X = _points(points)", "X, _ = _points(points)") in changes, changes
+    assert ("(Y[i, 0], Y[0, 1])", "(Y[i, 0], Y[i, 1])") in changes, changes
+    assert ("image.shape[::-1]", "image.shape[1::-1]") in changes, changes

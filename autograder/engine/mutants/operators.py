@@ -70,7 +70,10 @@ OPERATORS = {
     "reshape_transpose": ("reshape", "transpos"),      # X.T -> X.reshape(X.shape[::-1])
     "int_base": ("base", "binary", "decimal", "int("),
     "loop_counter": ("index", "loop", "first", "every"),
-    "shape_reversed": ("shape", "width", "height", "channel"),   # (student only) img.shape[::-1] -> img.shape[1::-1]   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
+    "shape_reversed": ("shape", "width", "height", "channel"),
+    "flat_column": ("column", "axis", "shape", "broadcast"),   # (student only) P[:, 3:] -> P[:, 3]
+    "count_rows": ("count", "size", "number", "len"),           # (student only) pts.size -> len(pts)
+    "unpack_pair": ("unpack", "pair", "tuple"),                 # (student only) X = f(p) -> X, _ = f(p)   # (student only) img.shape[::-1] -> img.shape[1::-1]   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
     "own_values": ("each", "own", "per", "whole"),     # total / weights.max() -> total / weights[..., None]
@@ -656,6 +659,32 @@ def _make_shape_reversed(node, payload):
     new = copy.deepcopy(node)   # img.shape[::-1] -> img.shape[1::-1]
     new.slice = ast.Slice(ast.Constant(1), None, ast.UnaryOp(ast.USub(), ast.Constant(1)))
     return new
+
+
+def _unpacked_width(helper: str, module_defs: dict) -> int:
+    """How many names the module's functions unpack ``helper``'s answer into (`X, single = _points(p)`: 2),
+    where they all agree; 0 where none does."""
+    widths = {len(node.targets[0].elts) for fn in (module_defs or {}).values() for node in ast.walk(fn)
+              if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple)
+              and isinstance(node.value, ast.Call) and isinstance(node.value.func, ast.Name)
+              and node.value.func.id == helper}
+    return widths.pop() if len(widths) == 1 else 0
+
+
+def _make_flat_column(node, payload):
+    new = copy.deepcopy(node)   # P[:, 3:] -> P[:, 3]
+    new.slice.elts[1] = copy.deepcopy(node.slice.elts[1].lower)
+    return new
+
+
+def _make_count_rows(node, payload):
+    return ast.Call(ast.Name("len", ast.Load()), [copy.deepcopy(node.value)], [])   # pts.size -> len(pts)
+
+
+def _make_unpack_pair(node, payload):
+    target = node.targets[0].id   # X = _points(p) -> X, _ = _points(p)
+    names = [ast.Name(target, ast.Store())] + [ast.Name("_", ast.Store()) for _ in range(payload - 1)]
+    return ast.Assign([ast.Tuple(names, ast.Store())], copy.deepcopy(node.value))
 
 
 def _makes_text(node) -> bool:
@@ -1568,7 +1597,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
-         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -2494,6 +2523,26 @@ def _changes(node, parents, words: _Words, line):
             yield from _counted_loop_changes(loop)
     if words.student and isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name):
         yield from _index_of_the_loop(node, parents)
+    if words.student and isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) \
+            and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2 and _whole_slice(node.slice.elts[0]) \
+            and isinstance(node.slice.elts[1], ast.Slice) and node.slice.elts[1].upper is None \
+            and node.slice.elts[1].step is None and isinstance(node.slice.elts[1].lower, ast.Constant) \
+            and type(node.slice.elts[1].lower.value) is int and node.slice.elts[1].lower.value >= 1:
+        # (the student's code only: a last column kept 2-D, (3, 1), where the flat column belongs -- `P[:, 3:]`
+        # added to (N, 3) rows broadcasts -- `P[:, 3]`)
+        yield "flat_column", None, ""
+    if words.student and isinstance(node, ast.Attribute) and node.attr == "size" and isinstance(node.ctx, ast.Load) \
+            and isinstance(node.value, ast.Name) and isinstance(parent, ast.BinOp):
+        # (the student's code only: every entry counted, 3N, where the points' count belongs -- `sum / pts.size`)
+        yield "count_rows", None, ""
+    if words.student and isinstance(node, ast.Assign) and len(node.targets) == 1 \
+            and isinstance(node.targets[0], ast.Name) and isinstance(node.value, ast.Call) \
+            and isinstance(node.value.func, ast.Name):
+        # (the student's code only: a helper's pair kept whole where it is unpacked elsewhere -- `X = _points(p)`
+        # beside `X, single = _points(p)`)
+        width = _unpacked_width(node.value.func.id, words.module_defs)
+        if width:
+            yield "unpack_pair", width, ""
     if words.student and isinstance(node, ast.Subscript) and isinstance(node.value, ast.Attribute) \
             and node.value.attr == "shape" and isinstance(node.slice, ast.Slice) and node.slice.lower is None \
             and node.slice.upper is None and isinstance(node.slice.step, ast.UnaryOp) \
