@@ -1436,3 +1436,39 @@ def test_a_reciprocal_transposed_in_a_product_is_read_as_taken_for_the_inverse()
     source = "def f(x, K1):\n    return x @ (K1 ** -1).T\n"
     sentences = [f.sentence for found in read_source(source, frozenset()).findings.values() for f in found]
     assert any("np.linalg.inv(K1)" in s for s in sentences), sentences
+
+
+def test_vectors_divided_by_the_whole_arrays_norm_are_read():
+    """`d = rng.standard_normal((n, k, 2))` then `d / np.linalg.norm(d)` (the blind set 1205e's 09/02): one
+    number for every vector; with an axis, or of a single vector, nothing is read."""
+    source = """
+        import numpy as np
+
+        def graded(n, k, seed):
+            rng = np.random.default_rng(seed)
+            d = rng.standard_normal((n, k, 2))
+            d = d / np.linalg.norm(d)
+            return d
+        """
+    assert one(source) == {"every vector divided by the norm of the whole array"}, one(source)
+    assert not one(source.replace("np.linalg.norm(d)", "np.linalg.norm(d, axis=-1, keepdims=True)"))
+    assert not one(source.replace("rng.standard_normal((n, k, 2))", "rng.standard_normal(3)"))
+
+
+def test_a_homogeneous_one_scaled_with_the_coordinates_is_read_beside_its_transform():
+    """`np.hstack([pts - c, ones]) * s` where T = [[s, 0, -s c0], ...] undoes the normalisation (the blind set
+    1205e's 11/04): the 1 becomes s; scaled before the 1 is appended, or with no transform made of s, nothing."""
+    source = """
+        import numpy as np
+
+        def graded(pts):
+            c = pts.mean(axis=0)
+            s = np.sqrt(2) / np.mean(np.linalg.norm(pts - c, axis=1))
+            ones = np.ones((len(pts), 1))
+            q = np.hstack([pts - c, ones]) * s
+            T = np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1]])
+            return q, T
+        """
+    assert one(source) == {"the homogeneous 1 is scaled with the coordinates"}, one(source)
+    assert not one(source.replace("np.hstack([pts - c, ones]) * s", "np.hstack([(pts - c) * s, ones])"))
+    assert not one(source.replace("T = np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1]])", "T = None"))

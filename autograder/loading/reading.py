@@ -251,6 +251,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _running_halves(name, function)
     found += _norm_of_every_pair_at_once(name, function)
     found += _whole_norm_divides_vectors(name, function)
+    found += _homogeneous_one_scaled(name, function)
     found += _singular_vectors_unused(name, function)
     found += _zeros_solved_for(name, function)
     found += _fundamental_as_essential(name, function)
@@ -1820,6 +1821,50 @@ def _norm_of_every_pair_at_once(name, function) -> list[Finding]:
                             f"of the whole difference, one number, so `{ast.unparse(node)}` (line {_line(node)}) is "
                             "one True or False for all the pairs; axis=1 gives each row's distance",
                             certain=True)]
+    return []
+
+
+_STACKS = frozenset({"hstack", "column_stack", "concatenate", "c_"})
+
+
+def _ones_piece(node, ones: set) -> bool:
+    """Whether ``node`` is a column of ones (`np.ones((n, 1))`, `np.ones(n)`, `np.ones_like(...)`, a name of one)."""
+    if isinstance(node, ast.Name):
+        return node.id in ones
+    return isinstance(node, ast.Call) and _call_name(node) in ("ones", "ones_like")
+
+
+def _in_a_matrix(factor: str, function) -> bool:
+    """Whether ``factor`` is also written into a matrix (a list literal, `np.diag(...)`): the transform that
+    undoes the normalisation -- only then does a 1 scaled with the coordinates disagree with it."""
+    return any(isinstance(node, (ast.List, ast.Tuple)) and any(isinstance(n, ast.Name) and n.id == factor
+                                                              for e in node.elts for n in ast.walk(e))
+               and any(isinstance(e, (ast.List, ast.Tuple)) for e in node.elts)
+               or isinstance(node, ast.Call) and _call_name(node) == "diag"
+               and any(isinstance(n, ast.Name) and n.id == factor for a in node.args for n in ast.walk(a))
+               for node in _nodes(function))
+
+
+def _homogeneous_one_scaled(name, function) -> list[Finding]:
+    """``np.hstack([pts - c, ones]) * s``: points made homogeneous, then the whole row scaled -- the appended 1
+    becomes s, so the normalised point is (s (x - c), s (y - c), s), the merely centred point up to scale; the
+    scale belongs to the coordinates before the 1 is appended."""
+    ones = {n.targets[0].id for n in _nodes(function) if isinstance(n, ast.Assign) and len(n.targets) == 1
+            and isinstance(n.targets[0], ast.Name) and _ones_piece(n.value, set())}
+    for node in _nodes(function):
+        if not (isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult)):
+            continue
+        for stacked, factor in ((node.left, node.right), (node.right, node.left)):
+            if isinstance(stacked, ast.Call) and _call_name(stacked) in _STACKS and stacked.args \
+                    and isinstance(stacked.args[0], (ast.List, ast.Tuple)) and len(stacked.args[0].elts) >= 2 \
+                    and _ones_piece(stacked.args[0].elts[-1], ones) and isinstance(factor, ast.Name) \
+                    and _in_a_matrix(factor.id, function):
+                first = ast.unparse(stacked.args[0].elts[0])
+                return [Finding(name, _line(node), "the homogeneous 1 is scaled with the coordinates",
+                                f"{name} (line {_line(node)}) computes `{ast.unparse(node)}`: the column of ones is "
+                                f"multiplied by `{ast.unparse(factor)}` too, so each point's last coordinate is "
+                                f"`{ast.unparse(factor)}`, not 1 -- up to scale that is the point before the scaling; "
+                                f"scale the coordinates before appending the 1 (`({first}) * {ast.unparse(factor)}`)")]
     return []
 
 
