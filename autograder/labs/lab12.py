@@ -1887,6 +1887,28 @@ def block_matching_uses_block_size(t):
     return judge_max_disparity_default(t, "block_matching")
 
 
+@ex4.check("cost is used: cost=\"ssd\" and cost=\"ncc\" give different maps where the right image is brighter",
+           points=1, timeout=STEREO_TIMEOUT)
+def block_matching_uses_cost(t):
+    """The default cost is SSD; NCC (the extension) forgives a brightness gain SSD does not. Quality checks
+    cannot see a default that runs NCC (it matches as well): on a pair whose right image is 1.5 times
+    brighter the two maps must differ. Where cost="ncc" is not written yet, the extension's checks say so."""
+    scene = truth.scene("random_dots")
+    brighter = np.clip(np.asarray(scene.right, np.float64) * 1.5, 0, 255).astype(np.uint8)
+    what = "block_matching(left, 1.5 x brighter right, cost=...)"
+    ssd = t.call("block_matching", np.array(scene.left), brighter, max_disparity=scene.max_disparity, cost="ssd")
+    try:
+        ncc = t.call("block_matching", np.array(scene.left), brighter, max_disparity=scene.max_disparity, cost="ncc")
+    except StudentFailure:
+        return passed("cost=\"ncc\" is not answered: the extension's checks judge it")
+    if same_informative_result(ssd, ncc):
+        t.fail(measured(f"{what}: cost=\"ssd\" gives exactly the map cost=\"ncc\" gives, on a pair where the "
+                        "two costs disagree (a brightness gain changes SSD, not NCC): one of the two values of cost "
+                        "is not the cost it names -- look at how cost is compared (\"ssd\" in lower case, as the "
+                        "API writes it)"), mistake="cost is ignored")
+    return passed("cost=\"ssd\" and cost=\"ncc\" give different maps")
+
+
 def judge_max_disparity_default(t: Trial, function: str):
     """``function(left, right)`` with max_disparity left out gives what max_disparity=64, the API's
     default, gives: the checks give it, each for its scene."""

@@ -1149,6 +1149,15 @@ MISTAKES = {
             shifts = np.arange(n_bits - 1, -1, -1)[:, None]
             return (((gray[None, :] >> shifts) & 1) * 255).astype(np.uint8)
         """, ["to `2 ** n_bits`"]),
+    # the blind set 1205e's 12/02: the cost compared in the lab sheet's capitals, the default running NCC
+    "block_matching comparing cost with \"SSD\" in capitals": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost not in ("ssd", "ncc"):
+                raise ValueError(cost)
+            left, right = _grey_float(left), _grey_float(right)
+            volume = (_ssd_volume if cost == "SSD" else _ncc_volume)(left, right, int(max_disparity), int(block_size))
+            return np.argmin(volume, axis=0).astype(np.float64)
+        """, ["cost=\"ssd\" gives exactly the map cost=\"ncc\" gives"]),
     # the blind set 1205d's 12/02: the right image padded on the left, then cut back at its start (no shift)
     "block_matching shifting by np.pad then cutting the pad's columns off again": ("lab12.ex4", """
         _ncc_right = block_matching
