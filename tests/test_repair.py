@@ -5208,3 +5208,16 @@ def test_more_slips_of_the_blind_set_1205e_are_changes_tried():
     assert ("X = _points(points)", "X, _ = _points(points)") in changes, changes
     assert ("(Y[i, 0], Y[0, 1])", "(Y[i, 0], Y[i, 1])") in changes, changes
     assert ("image.shape[::-1]", "image.shape[1::-1]") in changes, changes
+
+
+def test_a_column_kept_alone_is_tried_where_every_column_from_it_on_is_taken():
+    """`-xn[:, 1:] * Xn` of points left homogeneous takes (y, 1) where y alone belongs (the blind set 1205e's
+    10/09): `xn[:, 1:2]` is a change tried."""
+    student, mutants = _read("""
+        import numpy as np
+
+        def graded(xn, Xn):
+            return -xn[:, 1:] * Xn
+    """)
+    changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None}
+    assert ("-xn[:, 1:] * Xn", "-xn[:, 1:2] * Xn") in changes, changes

@@ -4864,6 +4864,10 @@ def _slice_changes(node: ast.Slice):
     elif lower == 1 and upper is None:
         yield "slice", (None, 2), ""
         yield "slice", (None, -1), ""
+    if lower is not None and lower >= 1 and upper is None:
+        # (every column from k on, where column k alone belongs: `xn[:, 1:]` of points left homogeneous is
+        # (y, 1), where y, kept 2-D, was meant -- `xn[:, 1:2]`)
+        yield "slice", (lower, lower + 1), ""
     elif lower is None and upper in (2, -1):
         yield "slice", (1, None), ""
 
