@@ -1315,7 +1315,11 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
                         "default, red (0, 0, 255))."), mistake="circles drawn in other colours than the one given")
     if missing:
         only = sorted(set(range(len(pts))) - set(missing) - set(_off_image(image.shape, pts)))
-        first = " (only the first point is drawn: is the return inside the loop?)" if only == [0] else ""
+        # (why, only where the code shows it: a return in the loop's body ends it after the first point)
+        returned = _return_in_a_loop(code_of(t).reachable([what.split("(", 1)[0]])) if only == [0] else None
+        first = "" if only != [0] else " (only the first point is drawn" + (
+            from_code(f": your code returns inside the loop (line {returned}), which ends it after one point)")
+            if returned else ")")
         h, w = image.shape[:2]
         border = "" if first or not all(x in (0, w - 1) or y in (0, h - 1) for x, y in np.round(pts[missing])) \
             else (f" (on the image's border: x = 0 and {w - 1}, y = 0 and {h - 1} are pixels of the image, "
@@ -1368,6 +1372,17 @@ def _other_drawings(functions) -> str:
                     and _hints_path(node.func).rsplit(".", 1)[-1] in _DRAWINGS:
                 found.setdefault(_hints_path(node.func), node.lineno)
     return " and ".join(f"`{name}` (line {line})" for name, line in found.items())
+
+
+def _return_in_a_loop(functions) -> int | None:
+    """The line of a ``return`` in the body of a ``for`` or ``while`` loop (not in a function nested there)."""
+    for function in functions:
+        for loop in ast.walk(function):
+            if isinstance(loop, (ast.For, ast.While)):
+                for node in (n for statement in loop.body for n in ast.walk(statement)):
+                    if isinstance(node, ast.Return):
+                        return node.lineno
+    return None
 
 
 def _wrapped_at_256(got, image, pts, radius, color) -> str:

@@ -777,7 +777,7 @@ MISTAKES = {
             for x, y in np.asarray(pts, dtype=np.float64).reshape(-1, 2):
                 cv2.circle(out, (int(round(x)), int(round(y))), int(radius), tuple(int(c) for c in color), -1)
                 return out
-        """, ["only the first point is drawn"]),
+        """, ["only the first point is drawn", "your code returns inside the loop (line"]),
     "px in the skew entry": ("lab09.ex2", """
         def intrinsic_matrix(f, px, py):
             return np.array([[f, px, 0.0], [0.0, f, py], [0.0, 0.0, 1.0]])
