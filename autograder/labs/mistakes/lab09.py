@@ -993,23 +993,11 @@ MISTAKES = {
             return xy.T[0] if single else xy.T
         """, ["to `pts.reshape(-1, 3).T`"]),
     # the blind set 1205e's 09/06: the OpenCV tutorial's image size, the whole shape reversed ((3, W, H) in colour)
-    "calibrate sizing the image by its whole shape reversed": ("lab09.ext1", """
-        def calibrate(images, pattern_size, square_size):
-            cols, rows = pattern_size
-            objp = np.zeros((cols * rows, 3), np.float32)
-            objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size
-            object_points, image_points = [], []
-            for image in images:
-                grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
-                found, corners = cv2.findChessboardCorners(grey, (cols, rows))
-                if found:
-                    criteria = (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3)
-                    image_points.append(cv2.cornerSubPix(grey, corners, (5, 5), (-1, -1), criteria))
-                    object_points.append(objp)
-            size = images[0].shape[::-1]
-            rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, size, None, None)
-            return K, dist.ravel()[:5], float(rms)
-        """, ["to `images[0].shape[1::-1]`"]),
+    "calibrate sizing the image by its whole shape reversed": ("lab09.ext1", reference_def_with(
+        "lab09_camera", "calibrate",
+        "rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, (width, height), None, None)",
+        "rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, images[0].shape[::-1], None, None)"),
+        ["to `images[0].shape[1::-1]`"]),
     # the blind set 1205e's 09/02: random directions divided by the norm of the whole array
     "simulate_aperture normalising every direction by the whole array's norm": ("lab09.ex4", """
         def simulate_aperture(points, f, aperture, n_rays=100, seed=0):

@@ -1084,21 +1084,9 @@ MISTAKES = {
             return cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
         """, ["are not black", "your code uses cv2.BORDER_REPLICATE"]),
     # the blind set 1205e's 10/10: P negated by the sign of one entry, where det(P[:, :3]) decides
-    "decompose_camera_matrix negating P by the sign of P[2, 2]": ("lab10.ex5", """
-        _decompose_positive = decompose_camera_matrix
-        def decompose_camera_matrix(P):
-            P = np.asarray(P, dtype=np.float64)
-            if P[2, 2] < 0:
-                P = -P
-            flip = np.eye(3)[::-1]
-            Q, U = np.linalg.qr((flip @ P[:, :3]).T)
-            K = flip @ U.T @ flip
-            R = flip @ Q.T
-            signs = np.diag(np.sign(np.diag(K)))
-            K, R = K @ signs, signs @ R
-            t = np.linalg.solve(K, P[:, 3])
-            return K / K[2, 2], R, t
-        """, ["your code tests `P[2, 2] < 0`"]),
+    "decompose_camera_matrix negating P by the sign of P[2, 2]": ("lab10.ex5", reference_def_with(
+        "lab10_camera2", "decompose_camera_matrix", "if np.linalg.det(P[:, :3]) < 0:", "if P[2, 2] < 0:"),
+        ["your code tests `P[2, 2] < 0`"]),
 }
 
 
