@@ -5221,3 +5221,22 @@ def test_a_column_kept_alone_is_tried_where_every_column_from_it_on_is_taken():
     """)
     changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None}
     assert ("-xn[:, 1:] * Xn", "-xn[:, 1:2] * Xn") in changes, changes
+
+
+def test_a_formula_given_scaled_copies_where_their_sources_belong_is_a_change_tried():
+    """`xr = x * radial` then the tangential terms written with xr, yr (the blind set 1205e's 09/04): the line
+    with the sources read is a change; a name assigned twice is no scaled copy."""
+    student, mutants = _read("""
+        def graded(x, y, k, p):
+            radial = 1 + k * (x * x + y * y)
+            xr = x * radial
+            yr = y * radial
+            dx = 2 * p * xr * yr
+            z = x * 2
+            z = z + 1
+            w = z * 3
+            return xr + dx, yr, w
+    """)
+    changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None and m.operator == "source_names"}
+    assert ("dx = 2 * p * xr * yr", "dx = 2 * p * x * y") in changes, changes
+    assert not any(before.startswith("w =") for before, _ in changes), changes

@@ -73,7 +73,8 @@ OPERATORS = {
     "shape_reversed": ("shape", "width", "height", "channel"),
     "flat_column": ("column", "axis", "shape", "broadcast"),   # (student only) P[:, 3:] -> P[:, 3]
     "count_rows": ("count", "size", "number", "len"),           # (student only) pts.size -> len(pts)
-    "unpack_pair": ("unpack", "pair", "tuple"),                 # (student only) X = f(p) -> X, _ = f(p)   # (student only) img.shape[::-1] -> img.shape[1::-1]   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
+    "unpack_pair": ("unpack", "pair", "tuple"),                 # (student only) X = f(p) -> X, _ = f(p)
+    "source_names": ("source", "scaled", "distorted", "before"),   # (student only) f(xr, yr) -> f(x, y), xr = x * k   # (student only) img.shape[::-1] -> img.shape[1::-1]   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
     "own_values": ("each", "own", "per", "whole"),     # total / weights.max() -> total / weights[..., None]
@@ -685,6 +686,40 @@ def _make_unpack_pair(node, payload):
     target = node.targets[0].id   # X = _points(p) -> X, _ = _points(p)
     names = [ast.Name(target, ast.Store())] + [ast.Name("_", ast.Store()) for _ in range(payload - 1)]
     return ast.Assign([ast.Tuple(names, ast.Store())], copy.deepcopy(node.value))
+
+
+def _scaled_copies(fn) -> dict:
+    """{name: its source} of the names ``fn`` assigns once as another name scaled (`xr = x * radial`,
+    `yn = y / s`): a value and the one it was made from, either of which a formula may read."""
+    cached = getattr(fn, "_scaled_copies", None)
+    if cached is None:
+        counts: dict = {}
+        for node in ast.walk(fn):
+            if isinstance(node, (ast.Assign, ast.AugAssign)):
+                for target in (node.targets if isinstance(node, ast.Assign) else [node.target]):
+                    for t in ast.walk(target):
+                        if isinstance(t, ast.Name):
+                            counts[t.id] = counts.get(t.id, 0) + 1
+        cached = {}
+        for node in ast.walk(fn):
+            if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                    and counts.get(node.targets[0].id) == 1 and isinstance(node.value, ast.BinOp) \
+                    and isinstance(node.value.op, (ast.Mult, ast.Div)):
+                sides = [node.value.left] + ([node.value.right] if isinstance(node.value.op, ast.Mult) else [])
+                sources = [side.id for side in sides if isinstance(side, ast.Name)]
+                if len(sources) >= 1 and sources[0] != node.targets[0].id:
+                    cached[node.targets[0].id] = sources[0]
+        fn._scaled_copies = cached
+    return cached
+
+
+def _make_source_names(node, payload):
+    made = copy.deepcopy(node)   # dx = 2 * p1 * xr * yr -> dx = 2 * p1 * x * y
+    sources = dict(payload)
+    for name in ast.walk(made.value):
+        if isinstance(name, ast.Name) and name.id in sources and isinstance(name.ctx, ast.Load):
+            name.id = sources[name.id]
+    return made
 
 
 def _makes_text(node) -> bool:
@@ -1597,7 +1632,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
-         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "source_names": _make_source_names, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -2523,6 +2558,13 @@ def _changes(node, parents, words: _Words, line):
             yield from _counted_loop_changes(loop)
     if words.student and isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name):
         yield from _index_of_the_loop(node, parents)
+    if words.student and isinstance(node, ast.Assign) and len(node.targets) == 1:
+        # (the student's code only: a formula written with values already scaled where their sources belong --
+        # the tangential terms of a distortion given the radially distorted x and y, `xr = x * radial`)
+        derived = _scaled_copies(words.fn)
+        read = sorted({n.id for n in ast.walk(node.value) if isinstance(n, ast.Name) and n.id in derived})
+        if read and not any(isinstance(t, ast.Name) and t.id in derived for t in ast.walk(node.targets[0])):
+            yield "source_names", tuple((name, derived[name]) for name in read), ""
     if words.student and isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) \
             and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2 and _whole_slice(node.slice.elts[0]) \
             and isinstance(node.slice.elts[1], ast.Slice) and node.slice.elts[1].upper is None \
