@@ -705,10 +705,16 @@ def _scaled_copies(fn) -> dict:
             if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
                     and counts.get(node.targets[0].id) == 1 and isinstance(node.value, ast.BinOp) \
                     and isinstance(node.value.op, (ast.Mult, ast.Div)):
+                # (two simple factors, a name among them: `x * radial`, `radial * x`, `y / s`; a parameter is
+                # the source where both are names)
                 sides = [node.value.left] + ([node.value.right] if isinstance(node.value.op, ast.Mult) else [])
-                sources = [side.id for side in sides if isinstance(side, ast.Name)]
-                if len(sources) >= 1 and sources[0] != node.targets[0].id:
-                    cached[node.targets[0].id] = sources[0]
+                simple = all(isinstance(side, (ast.Name, ast.Constant, ast.Attribute))
+                             for side in (node.value.left, node.value.right))
+                names = [side.id for side in sides if isinstance(side, ast.Name)]
+                params = {a.arg for a in fn.args.args}
+                names = sorted(names, key=lambda name: name not in params)
+                if simple and names and names[0] != node.targets[0].id:
+                    cached[node.targets[0].id] = names[0]
         fn._scaled_copies = cached
     return cached
 
