@@ -2134,6 +2134,9 @@ CONSISTENCY_SLACK = 0.05   # px the recomputed error may exceed the returned rms
 # about rms / sqrt(corners): 0.006-0.014 px for the same detections. Below this, the number returned
 # is not an RMS of detected corners.
 RMS_FLOOR = 0.02   # px
+# cv2.calibrateCamera's RMS on these views, measured: 0.037-0.096 px with corners refined by cv2.cornerSubPix in
+# windows of 3x3 to 11x11 or not refined at all, with flags 0, CALIB_RATIONAL_MODEL or CALIB_FIX_K3
+RMS_CEILING = 0.15   # px
 
 
 def _divides_a_norm(function) -> bool:
@@ -2161,6 +2164,8 @@ def calibration_consistent(t):
                "(4, 5, 8, 12 or 14)")
     if 0 <= rms < RMS_FLOOR:
         _fail_rms_below_detection(t, what, rms, corners)
+    if rms > RMS_CEILING and recomputed <= RMS_CEILING:
+        _fail_rms_above_detection(t, what, rms, recomputed)
     if recomputed <= rms + CONSISTENCY_SLACK:
         return passed(f"the board's corners reprojected with your K and dist (best pose per view) are "
                       f"{recomputed:.3f} px RMS from the true corners; your rms says {rms:.3f} px")
@@ -2185,6 +2190,23 @@ def calibration_consistent(t):
                     f"view reprojects the board's corners {shown} RMS from the true corners, while the rms returned "
                     f"says {rms:.3f} px") + (cause or "."),
            mistake=from_code("K from cv2.getOptimalNewCameraMatrix instead of the calibrated K") if reading else "")
+
+
+def _fail_rms_above_detection(t: Trial, what: str, rms: float, recomputed: float) -> None:
+    """The rms returned is above what any detection gives on these views while K and dist reproject the corners
+    well: not cv2.calibrateCamera's RMS. Said with the square root the code takes of it, where it takes one."""
+    roots = [node for function in code_of(t).reachable(["calibrate"]) for node in ast.walk(function)
+             if isinstance(node, ast.Call) and _hints_path(node.func).rsplit(".", 1)[-1] == "sqrt"
+             or isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.Constant)
+             and node.right.value == 0.5]
+    cause = from_code(f" Your code takes a square root (`{ast.unparse(roots[0])}`, line {roots[0].lineno}): the first "
+                      "result of cv2.calibrateCamera is already the root mean square reprojection error, in pixels; "
+                      "return it as it is.") if roots else ""
+    t.fail(measured(f"{what}: the rms returned is {rms:.3f} px, above what cv2.calibrateCamera's RMS reprojection "
+                    f"error is on these rendered views (0.04-0.1 px, whatever the corner refinement and flags), while "
+                    f"your K and dist reproject the board's corners {recomputed:.3f} px RMS from the true ones: the rms "
+                    "is not the calibration's own.") + cause,
+           mistake=from_code("the square root of the RMS returned as the rms") if roots else "")
 
 
 def _fail_rms_below_detection(t: Trial, what: str, rms: float, corners) -> None:

@@ -1009,6 +1009,10 @@ MISTAKES = {
             ideal = f * X[:, :2] / X[:, 2:]
             return ideal[:, None, :] - radius * direction * (1.0 + f / X[:, 2])[:, None, None]
         """, ["that is the norm of the whole array", "axis=-1, keepdims=True"]),
+    # the blind set 1205f's 09/05: OpenCV's RMS taken for a mean squared error, its root taken again
+    "calibrate returning the square root of the RMS": ("lab09.ext1", reference_def_with(
+        "lab09_camera", "calibrate", "return K, dist.ravel()[:5], float(rms)", "return K, dist.ravel()[:5], float(np.sqrt(rms))"),
+        ["above what cv2.calibrateCamera's RMS", "Your code takes a square root (`np.sqrt(rms)`"]),
 }
 
 
