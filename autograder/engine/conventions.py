@@ -100,6 +100,41 @@ def whole_numbers(exercise, function: str, inputs: Callable[[], tuple], points: 
                    points=points, hidden=hidden)(check)
 
 
+def column_vector(exercise, function: str, inputs: Callable[[], tuple], position: int, name: str) -> None:
+    """Register on ``exercise`` an advice check (no points) that ``function`` answers its 3-vector argument
+    ``name`` (at ``position`` of ``inputs()``) given as OpenCV's (3, 1) column as it answers it flat, (3,):
+    the skeletons give (3,), OpenCV's calibration and pose functions return (3, 1), and course code hands
+    them on. A tip where the column form raises or changes the answer."""
+    def check(t: Trial):
+        args = inputs()
+        flat = t.call(function, *args)   # (the flat form failing is the graded checks' to say)
+        column = list(args)
+        column[position] = np.asarray(args[position], dtype=np.float64).reshape(-1, 1)
+        what = f"{function}(...) with {name} of shape (3, 1)"
+        try:
+            got = t.call(function, *column)
+        except StudentFailure as failure:
+            t.advise(measured(f"{what} raised where the same {name} of shape (3,) works ({failure.message.splitlines()[0]}): "
+                              f"OpenCV returns {name} as a (3, 1) column; flatten it first (np.ravel({name})) to take both"))
+            return
+        if not _same_answers(flat, got):
+            t.advise(measured(f"{what} answered otherwise than with the same {name} of shape (3,): a (3, 1) column "
+                              f"broadcasts against (3,) vectors into a 3x3 matrix; flatten it first (np.ravel({name}))"))
+    check.__name__ = f"{function}_{name}_as_a_column"
+    exercise.advice(f"{function} takes {name} as a (3, 1) column too, as OpenCV returns it")(check)
+
+
+def _same_answers(first, second) -> bool:
+    """Two answers equal to rounding, however nested (a tuple of images and matrices)."""
+    if isinstance(first, (tuple, list)) and isinstance(second, (tuple, list)):
+        return len(first) == len(second) and all(_same_answers(a, b) for a, b in zip(first, second))
+    a, b = np.asarray(first), np.asarray(second)
+    if a.shape != b.shape or a.dtype.kind not in "biuf" or b.dtype.kind not in "biuf":
+        return a.shape == b.shape and bool(np.all(a == b))
+    scale = max(1.0, float(np.nanmax(np.abs(a))) if a.size and np.isfinite(a).any() else 1.0)
+    return bool(np.allclose(a, b, rtol=1e-6, atol=1e-9 * scale, equal_nan=True))
+
+
 MODEL = "its answer is a model fitted to the points, made in no array of theirs"
 DRAWN = "its answer is an image drawn at whole pixels: whole numbers given as integers draw alike"
 FITTED = "one model fitted to all the points together"   # an estimator's points are no rows of its answer

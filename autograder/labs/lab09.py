@@ -649,6 +649,11 @@ def camera_matrix_property(t):
     t.for_all(seeds, holds, max_examples=8, describe=lambda s: f"fixtures.lab09.random_pose({s})")
 
 
+# (the skeleton gives t as (3,); cv2.solvePnP and cv2.calibrateCamera give a pose's t as a (3, 1) column --
+# the blind set 1205f's 09/02 inserted it as three columns)
+conventions.column_vector(ex3, "camera_matrix", _example_camera, 2, "t")
+
+
 def project_formulas(P, X):
     """The formulas one coordinate of ``project`` may have been computed with, in terms of
     the entries of ``P [X, 1]``: ``(P X)[0] / (P X)[2]``, ``(P X)[2]``..."""

@@ -1467,29 +1467,9 @@ def rectify_colour(t):
            "a grey pair's images match their homographies" + (f": {told}" if (told := COLOUR_HINT.said(t)) else "."))
 
 
-@ex3.advice("rectify takes T as a (3, 1) column too, as OpenCV's calibration returns it")
-def rectify_column_translation(t):
-    """The skeleton gives T as (3,); cv2.stereoCalibrate returns it as a (3, 1) column, and a student's
-    course code hands that on. Worth no points: a tip where the column form raises or changes the maps."""
-    pair = truth.unrectified_pair(seed=4)
-    what = "rectify(img_l, img_r, K1, K2, R, T) with T of shape (3, 1)"
-    _, _, H1, H2 = call_rectify(t, pair)   # (the (3,) form: where it fails, the graded checks say so)
-    column = replace(pair, T=np.asarray(pair.T, dtype=np.float64).reshape(3, 1))
-    try:
-        _, _, C1, C2 = call_rectify(t, column)
-    except StudentFailure as failure:
-        t.advise(measured(f"{what} raised where the same T of shape (3,) works ({failure.message.splitlines()[0]}): "
-                          "cv2.stereoCalibrate returns T as a (3, 1) column; flatten it first (np.ravel(T)) to "
-                          "take both"))
-        return
-    except Fail as failure:
-        t.advise(measured(f"{what} returned another kind of answer than with T of shape (3,) "
-                          f"({failure.message.splitlines()[0]}); flatten T first (np.ravel(T)) to take both"))
-        return
-    if not (np.allclose(C1, H1, atol=1e-6 * max(1.0, np.abs(H1).max())) and
-            np.allclose(C2, H2, atol=1e-6 * max(1.0, np.abs(H2).max()))):
-        t.advise(measured(f"{what} returned other H1, H2 than with the same T of shape (3,): a (3, 1) column "
-                          "broadcasts against (3,) vectors into a 3x3 matrix; flatten T first (np.ravel(T))"))
+# (the skeleton gives T as (3,); cv2.stereoCalibrate returns it as a (3, 1) column -- the blind set 1205d's 12/04)
+conventions.column_vector(ex3, "rectify", lambda: (lambda pair: (pair.img_l, pair.img_r, pair.K1, pair.K2, pair.R, pair.T))(
+    truth.unrectified_pair(seed=4)), 5, "T")
 
 
 def _converts_colour(function) -> bool:
