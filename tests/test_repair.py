@@ -5240,3 +5240,22 @@ def test_a_formula_given_scaled_copies_where_their_sources_belong_is_a_change_tr
     changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None and m.operator == "source_names"}
     assert ("dx = 2 * p * xr * yr", "dx = 2 * p * x * y") in changes, changes
     assert not any(before.startswith("w =") for before, _ in changes), changes
+
+
+def test_numpy_slips_of_the_blind_set_1205f_are_changes_tried():
+    """`np.tile` where `np.repeat` belongs (a value per point paired in the wrong order) and `math.pow` given an
+    array (TypeError) are changes tried; a NumPy call is not made a math one."""
+    student, mutants = _read("""
+        import math
+        import numpy as np
+
+        def graded(fs, r2, n):
+            every = np.tile(fs, n)
+            radial = 1 + math.pow(r2, 2) + np.sqrt(r2)
+            return every, radial
+    """)
+    changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None}
+    assert ("np.tile(fs, n)", "np.repeat(fs, n)") in changes, changes
+    assert ("1 + math.pow(r2, 2) + np.sqrt(r2)", "1 + np.power(r2, 2) + np.sqrt(r2)") in changes \
+        or ("math.pow(r2, 2)", "np.power(r2, 2)") in changes, changes
+    assert not any("math.sqrt" in after for _, after in changes), changes

@@ -342,9 +342,10 @@ def _is_det(node) -> bool:
 
 def _det_sign_test(node, held: set) -> bool:
     """``np.linalg.det(M) < 0`` (or ``> 0``, ``0 > det``, a name ``held`` assigned a determinant)."""
-    return isinstance(node, ast.Compare) and any(
-        _is_det(part) or isinstance(part, ast.Name) and (part.id in held or "det" in part.id.lower())
-        for part in [node.left, *node.comparators])
+    # (an ordering: `det(R) == -1` tests an exact value a determinant in floating point rarely is -- no sign test)
+    return isinstance(node, ast.Compare) and all(isinstance(op, (ast.Lt, ast.Gt, ast.LtE, ast.GtE)) for op in node.ops) \
+        and any(_is_det(part) or isinstance(part, ast.Name) and (part.id in held or "det" in part.id.lower())
+                for part in [node.left, *node.comparators])
 
 
 def _negates(statement) -> bool:

@@ -218,7 +218,14 @@ def another_block_tested(functions) -> str:
             if isinstance(call, ast.Call) and _path(call.func).endswith("det") and call.args \
                     and isinstance(call.args[0], ast.Subscript) and not left_three(call.args[0].slice):
                 return ast.unparse(call)
-    # (or the sign of one entry, `if P[2, 2] < 0: P = -P`: an entry's sign is no determinant's)
+    # (or a determinant compared with an exact value, `if np.linalg.det(R) == -1:` -- true only where rounding
+    # leaves it so -- or the sign of one entry, `if P[2, 2] < 0: P = -P`: an entry's sign is no determinant's)
+    for branch in (n for f in functions for n in ast.walk(f) if isinstance(n, ast.If)):
+        test = branch.test
+        if isinstance(test, ast.Compare) and len(test.ops) == 1 and isinstance(test.ops[0], (ast.Eq, ast.NotEq)) \
+                and any(isinstance(side, ast.Call) and _path(side.func).endswith("det")
+                        for side in (test.left, test.comparators[0])):
+            return ast.unparse(test)
     for branch in (n for f in functions for n in ast.walk(f) if isinstance(n, ast.If)):
         test = branch.test
         negates = any(isinstance(s, ast.Assign) and isinstance(s.value, ast.UnaryOp) and isinstance(s.value.op, ast.USub)

@@ -252,6 +252,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _norm_of_every_pair_at_once(name, function)
     found += _whole_norm_divides_vectors(name, function)
     found += _homogeneous_one_scaled(name, function)
+    found += _determinant_compared_exactly(name, function)
     found += _singular_vectors_unused(name, function)
     found += _zeros_solved_for(name, function)
     found += _fundamental_as_essential(name, function)
@@ -1865,6 +1866,27 @@ def _homogeneous_one_scaled(name, function) -> list[Finding]:
                                 f"multiplied by `{ast.unparse(factor)}` too, so each point's last coordinate is "
                                 f"`{ast.unparse(factor)}`, not 1 -- up to scale that is the point before the scaling; "
                                 f"scale the coordinates before appending the 1 (`({first}) * {ast.unparse(factor)}`)")]
+    return []
+
+
+def _determinant_compared_exactly(name, function) -> list[Finding]:
+    """``if np.linalg.det(R) == -1:`` (or ``!= 1``): a determinant computed in floating point is -1 only to
+    rounding (-0.9999999999999998), so the test is almost never true; its sign is what tells a reflection."""
+    for node in _nodes(function):
+        if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Eq, ast.NotEq)):
+            sides = [node.left, node.comparators[0]]
+            det = next((side for side in sides if isinstance(side, ast.Call) and _call_name(side) == "det"), None)
+            value = next((side for side in sides if side is not det), None)
+            number = value.value if isinstance(value, ast.Constant) else \
+                -value.operand.value if isinstance(value, ast.UnaryOp) and isinstance(value.op, ast.USub) \
+                and isinstance(value.operand, ast.Constant) else None
+            if det is not None and isinstance(number, (int, float)) and number in (1, -1):
+                sign = "< 0" if (number == -1) == isinstance(node.ops[0], ast.Eq) else "> 0"
+                return [Finding(name, _line(node), "a determinant compared with an exact value",
+                                f"{name} (line {_line(node)}) tests `{ast.unparse(node)}`: a determinant computed in "
+                                f"floating point is {number} only to rounding ({number * 0.9999999999999998!r}, say), so "
+                                f"the test is almost never what it means; test its sign (`{ast.unparse(det)} {sign}`)",
+                                certain=True)]
     return []
 
 

@@ -74,7 +74,9 @@ OPERATORS = {
     "flat_column": ("column", "axis", "shape", "broadcast"),   # (student only) P[:, 3:] -> P[:, 3]
     "count_rows": ("count", "size", "number", "len"),           # (student only) pts.size -> len(pts)
     "unpack_pair": ("unpack", "pair", "tuple"),                 # (student only) X = f(p) -> X, _ = f(p)
-    "source_names": ("source", "scaled", "distorted", "before"),   # (student only) f(xr, yr) -> f(x, y), xr = x * k   # (student only) img.shape[::-1] -> img.shape[1::-1]   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
+    "source_names": ("source", "scaled", "distorted", "before"),
+    "tile_repeat": ("tile", "repeat", "order", "pair"),           # (student only) np.tile(a, n) <-> np.repeat(a, n)
+    "math_numpy": ("math", "numpy", "array", "number"),           # (student only) math.pow(x, 2) -> np.power(x, 2)   # (student only) f(xr, yr) -> f(x, y), xr = x * k   # (student only) img.shape[::-1] -> img.shape[1::-1]   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
     "unwrap": ("call", "function"),                    # np.tan(s) -> s: a function applied that does not belong
     "own_values": ("each", "own", "per", "whole"),     # total / weights.max() -> total / weights[..., None]
@@ -726,6 +728,25 @@ def _make_source_names(node, payload):
         if isinstance(name, ast.Name) and name.id in sources and isinstance(name.ctx, ast.Load):
             name.id = sources[name.id]
     return made
+
+
+def _make_tile_repeat(node, payload):
+    new = copy.deepcopy(node)   # np.tile(fs, n) <-> np.repeat(fs, n)
+    name = _dotted(node.func)
+    new.func = _name(name.replace("tile", "repeat") if "tile" in name else name.replace("repeat", "tile"))
+    return new
+
+
+# math's functions of one number and NumPy's of the same meaning, entry by entry
+_MATH_TO_NUMPY = {name: name for name in ("sqrt", "exp", "log", "log10", "log2", "sin", "cos", "tan", "floor", "ceil",
+                                          "hypot", "degrees", "radians", "isnan", "isinf", "isfinite", "trunc")}
+_MATH_TO_NUMPY.update(pow="power", atan2="arctan2", atan="arctan", asin="arcsin", acos="arccos", fabs="abs")
+
+
+def _make_math_numpy(node, payload):
+    new = copy.deepcopy(node)   # math.pow(r2, 2) -> np.power(r2, 2)
+    new.func = _name("np." + _MATH_TO_NUMPY[_dotted(node.func)[5:]])
+    return new
 
 
 def _makes_text(node) -> bool:
@@ -1638,7 +1659,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
-         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "source_names": _make_source_names, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "source_names": _make_source_names, "tile_repeat": _make_tile_repeat, "math_numpy": _make_math_numpy, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -6412,6 +6433,15 @@ def _call_changes(node: ast.Call, words, what, parents):
         other = "degrees" if unit == "radians" else "radians"
         yield "degrees", "remove", f"{arg or 'the angle'} is used in {other} where {unit} are needed " \
                                    f"(the conversion `{dotted}` is missing)"
+    if words.student and dotted in ("np.tile", "numpy.tile", "np.repeat", "numpy.repeat") and len(node.args) == 2 \
+            and not node.keywords:
+        # (the student's code only: each item repeated where the whole array is tiled, or the other way --
+        # `np.tile(fs, n)` pairs f_0, f_1, ... with the points where `np.repeat(fs, n)` pairs f_0 with n of them)
+        yield "tile_repeat", None, ""
+    if words.student and dotted.startswith("math.") and dotted[5:] in _MATH_TO_NUMPY and node.args:
+        # (the student's code only: a function of one number given an array -- `math.pow(r2, 2)` -- where
+        # NumPy's of the same name works entry by entry)
+        yield "math_numpy", None, ""
     if words.student and dotted == "int" and len(node.args) == 1 and not node.keywords and _makes_text(node.args[0]):
         # (the student's code only: a string of bits read as a decimal number -- `int("".join(bits))` where
         # `int(..., 2)` belongs: "1010" is ten hundred and ten)
