@@ -934,7 +934,21 @@ def _depths(P, X) -> np.ndarray:
     return np.column_stack([X, np.ones(len(X))]) @ P[2] * np.sign(np.linalg.det(P[:, :3]))
 
 
-def fail_if_front_points_not_given(t: Trial, what: str, got, expected, P1, P2):
+def _null_vector_w(P1, P2, pts1, pts2, normalised: bool) -> np.ndarray:
+    """The fourth entry of each point's null vector as np.linalg.svd gives it, for the textbook system of
+    two rows per view (``x p3 - p1``, ``y p3 - p2``), its rows scaled to unit length or not: its sign is
+    SVD's choice, not the point's."""
+    P1, P2 = np.asarray(P1, np.float64), np.asarray(P2, np.float64)
+    x1, x2 = pts1[:, :2] / pts1[:, 2:], pts2[:, :2] / pts2[:, 2:]
+    A = np.stack([x1[:, :1] * P1[2] - P1[0], x1[:, 1:] * P1[2] - P1[1],
+                  x2[:, :1] * P2[2] - P2[0], x2[:, 1:] * P2[2] - P2[1]], axis=1)
+    if normalised:
+        A = A / np.linalg.norm(A, axis=2, keepdims=True)
+    with np.errstate(all="ignore"):
+        return np.linalg.svd(A)[2][:, -1, 3]
+
+
+def fail_if_front_points_not_given(t: Trial, what: str, got, expected, P1, P2, pts1=None, pts2=None):
     """A triangulation (labs 11 and 12) of the right shape giving NaN or infinite rows: which, and where
     every one of them is in front of both cameras, that they are (no point there is left without an
     answer: a test of "behind the camera" that marks them is the slip, not the points)."""
@@ -950,17 +964,26 @@ def fail_if_front_points_not_given(t: Trial, what: str, got, expected, P1, P2):
         # whose sign is the depth's only for P at a positive scale; the disparity's sign; Z in camera 1)
         homogeneous = np.column_stack([expected, np.ones(len(expected))])
         third = [homogeneous @ np.asarray(P, np.float64)[2] for P in (P1, P2)]
-        pts1 = (homogeneous @ np.asarray(P1, np.float64).T)
-        pts2 = (homogeneous @ np.asarray(P2, np.float64).T)
+        projected1 = (homogeneous @ np.asarray(P1, np.float64).T)
+        projected2 = (homogeneous @ np.asarray(P2, np.float64).T)
+        # (the points as given: the sign of a null vector SVD picks turns with the smallest rounding difference)
+        given1 = projected1 if pts1 is None else np.column_stack([np.reshape(pts1, (-1, 2)), np.ones(len(expected))])
+        given2 = projected2 if pts2 is None else np.column_stack([np.reshape(pts2, (-1, 2)), np.ones(len(expected))])
         with np.errstate(divide="ignore", invalid="ignore"):
-            disparity = pts1[:, 0] / pts1[:, 2] - pts2[:, 0] / pts2[:, 2]
+            disparity = projected1[:, 0] / projected1[:, 2] - projected2[:, 0] / projected2[:, 2]
         rules = {"the third coordinate of P X is <= 0 in one of the cameras (P's third row alone gives the depth "
                  "only for a P of positive scale: the depth is that coordinate times the sign of det(P[:, :3]), "
                  "and P is defined up to a scale, sign included)": (third[0] <= 0) | (third[1] <= 0),
                  "the disparity x1 - x2 is <= 0 (its sign says which side camera 2 is on, not whether a point "
                  "is in front: the depth in each camera does)": ~(disparity > 0),
                  "Z <= 0 in the world frame (camera 1's frame only when camera 1 is [I | 0])": expected[:, 2] <= 0}
+        # (the sign of the null vector's w, of the textbook system with its rows scaled or not: SVD's own choice)
+        null_w = "the fourth entry w of the SVD's null vector is negative (SVD gives v and -v alike: its sign " \
+                 "says nothing of the depth, which is w's sign times the sign of the third coordinate of P X)"
+        rules[null_w] = _null_vector_w(P1, P2, given1, given2, False) < 0
         shared = next((words for words, rule in rules.items() if np.array_equal(rule, lost)), "")
+        if not shared and np.array_equal(_null_vector_w(P1, P2, given1, given2, True) < 0, lost):
+            shared = null_w
         t.fail(measured(f"{what} returned NaN or infinite values for {lost.sum()} of the {len(got)} points, and "
                         f"each of those {lost.sum()} is in front of both cameras (a positive depth in each): NaN "
                         "is for a point behind a camera; " + (f"they are exactly the points where {shared}" if shared

@@ -207,7 +207,7 @@ def judge_triangulation(t: Trial, what: str, got, views, pts1=None, pts2=None, g
     name_batched_vt_row(t, what, got, n)
     linear = linear_triangulation(P1, P2, pts1, pts2)
     fail_if_points_left_out(t, what, got, linear, P1)
-    fail_if_front_points_not_given(t, what, got, linear, P1, P2)
+    fail_if_front_points_not_given(t, what, got, linear, P1, P2, pts1, pts2)
     got = t.expect_array(got, what, shape=(n, 3), kind="iuf")
     if not np.all(np.isfinite(got)):
         t.fail(f"{what} returned NaN or infinite values")
@@ -2230,6 +2230,14 @@ def judge_structure(t: Trial, pair, pts1, pts2, points3d, show=True, F=None):
     # mirrored): only the first three entries of unit homogeneous vectors (norm below 1, and
     # |w| = sqrt(1 - |X|^2)) tell that w was not divided out.
     norms = np.linalg.norm(got, axis=1)
+    directions = X / np.linalg.norm(X, axis=1, keepdims=True)
+    if np.all(np.abs(norms - norms[0]) <= 1e-6 * max(norms[0], 1e-300)) \
+            and np.median(np.sum(got / norms[:, None] * directions, axis=1)) > 1 - 1e-3:
+        # (every point on its ray, all at one distance from camera 1: each divided by its own length)
+        t.fail(measured(f"your 3D points all lie at the same distance from camera 1 ({norms[0]:.4g}), each on its "
+                        "true ray: each point is scaled by its own length (a direction, np.linalg.norm(..., axis=1)), "
+                        "where one scale for all the points keeps the scene's shape"),
+               mistake="each 3D point divided by its own length")
     if np.all(norms < 1):
         divided = got / np.sqrt(1.0 - norms ** 2)[:, None]
         if structure_error(divided, X) <= STRUCTURE_MEDIAN:

@@ -602,7 +602,7 @@ def judge_triangulation(t: Trial, what: str, got, P1, P2, pts1, pts2, X_true, ex
     name_batched_vt_row(t, what, got, n)
     linear = truth.linear_triangulation(P1, P2, pts1, pts2)
     fail_if_points_left_out(t, what, got, linear, P1)
-    fail_if_front_points_not_given(t, what, got, linear, P1, P2)
+    fail_if_front_points_not_given(t, what, got, linear, P1, P2, pts1, pts2)
     got = t.expect_array(got, what, shape=(n, 3), kind="iuf", finite=True)
     scale = max(1.0, float(np.abs(X_true).max()))
     error = np.linalg.norm(got - (X_true if exact else linear), axis=1)

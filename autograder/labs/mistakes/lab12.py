@@ -1158,6 +1158,19 @@ MISTAKES = {
             volume = (_ssd_volume if cost == "SSD" else _ncc_volume)(left, right, int(max_disparity), int(block_size))
             return np.argmin(volume, axis=0).astype(np.float64)
         """, ["cost=\"ssd\" gives exactly the map cost=\"ncc\" gives"]),
+    # the blind set 1205f's 12/01: "behind the camera" read off the sign SVD gave the null vector
+    "triangulate giving NaN where the SVD's null vector has a negative w": ("lab12.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            single = np.ndim(pts1) == 1
+            pts1, pts2 = np.reshape(pts1, (-1, 2)).astype(float), np.reshape(pts2, (-1, 2)).astype(float)
+            A = np.stack([pts1[:, :1] * P1[2] - P1[0], pts1[:, 1:] * P1[2] - P1[1],
+                          pts2[:, :1] * P2[2] - P2[0], pts2[:, 1:] * P2[2] - P2[1]], axis=1)
+            A = A / np.linalg.norm(A, axis=2, keepdims=True)
+            Xh = np.linalg.svd(A)[2][:, -1]
+            X = Xh[:, :3] / Xh[:, 3:]
+            X[Xh[:, 3] < 0] = np.nan
+            return X[0] if single else X
+        """, ["the fourth entry w of the SVD's null vector is negative"]),
     # the blind set 1205d's 12/02: the right image padded on the left, then cut back at its start (no shift)
     "block_matching shifting by np.pad then cutting the pad's columns off again": ("lab12.ex4", """
         _ncc_right = block_matching
