@@ -1439,8 +1439,9 @@ def fundamental_rank2(t):
         # F stored in float32 has s3 / s1 <= eps32 / sqrt(2) = 8.4e-8 (the reference's: 1e-12); the
         # unnormalised 8-point F without rank 2 on these points has 3.6e-6, too close for a floor.
         if s[2] / s[0] > 1e-7:
+            # (what the answer shows, not whether the code has a step for it: one written wrongly leaves rank 3 too)
             t.fail(f"{what} has rank 3 (singular values proportional to (1, {s[1] / s[0]:.3g}, {s[2] / s[0]:.3g})): "
-                   "rank 2 was not enforced. " + RANK2_HINT.said(t), mistake="rank 2 was not enforced")
+                   "the F returned is not of rank 2. " + RANK2_HINT.said(t), mistake="rank 2 was not enforced")
     return passed(f"smallest singular value {s[2] / s[0]:.1e} of the largest")
 
 

@@ -587,7 +587,7 @@ MISTAKES = {
             T1, T2 = _hartley_normalisation(pts1), _hartley_normalisation(pts2)
             Fn = _eight_point_core(_homogeneous(pts1) @ T1.T, _homogeneous(pts2) @ T2.T)
             return T2.T @ Fn @ T1
-        """, ["rank 2 was not enforced"]),
+        """, ["the F returned is not of rank 2"]),
     "8-point with an essential matrix's singular values (1, 1, 0)": ("lab11.ex4", """
         def fundamental_8point(pts1, pts2):
             pts1, pts2 = np.asarray(pts1, float), np.asarray(pts2, float)
