@@ -1487,3 +1487,16 @@ def test_a_determinant_compared_with_an_exact_value_is_read():
         """
     assert one(source) == {"a determinant compared with an exact value"}, one(source)
     assert not one(source.replace("np.linalg.det(R) == -1", "np.linalg.det(R) < 0"))
+
+
+def test_opencv_flags_joined_with_or_are_read():
+    """`flags=cv2.INTER_LINEAR or cv2.WARP_INVERSE_MAP` (the blind set 1205e's 08/01): `or` keeps one flag;
+    joined with `|`, nothing is read."""
+    source = """
+        import cv2
+
+        def graded(image, H, size):
+            return cv2.warpPerspective(image, H, size, flags=cv2.INTER_LINEAR or cv2.WARP_INVERSE_MAP)
+        """
+    assert one(source) == {"OpenCV flags joined with `or` or `and`"}, one(source)
+    assert not one(source.replace(" or ", " | "))

@@ -253,6 +253,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _whole_norm_divides_vectors(name, function)
     found += _homogeneous_one_scaled(name, function)
     found += _determinant_compared_exactly(name, function)
+    found += _flags_joined_with_or(name, function)
     found += _singular_vectors_unused(name, function)
     found += _zeros_solved_for(name, function)
     found += _fundamental_as_essential(name, function)
@@ -1866,6 +1867,21 @@ def _homogeneous_one_scaled(name, function) -> list[Finding]:
                                 f"multiplied by `{ast.unparse(factor)}` too, so each point's last coordinate is "
                                 f"`{ast.unparse(factor)}`, not 1 -- up to scale that is the point before the scaling; "
                                 f"scale the coordinates before appending the 1 (`({first}) * {ast.unparse(factor)}`)")]
+    return []
+
+
+def _flags_joined_with_or(name, function) -> list[Finding]:
+    """``flags=cv2.INTER_LINEAR or cv2.WARP_INVERSE_MAP``: Python's ``or`` gives its first true operand (or the
+    last), not both flags -- OpenCV's flags are bits, joined with ``|``."""
+    for node in _nodes(function):
+        if isinstance(node, ast.BoolOp) and isinstance(node.op, (ast.Or, ast.And)) \
+                and sum(_attribute_path(v).startswith(("cv2.", "cv.")) for v in node.values) >= 2:
+            joined = " | ".join(ast.unparse(v) for v in node.values)
+            word = "or" if isinstance(node.op, ast.Or) else "and"
+            return [Finding(name, _line(node), "OpenCV flags joined with `or` or `and`",
+                            f"{name} (line {_line(node)}) computes `{ast.unparse(node)}`: Python's `{word}` gives one "
+                            f"of its operands, not the flags together, so all but one are lost; OpenCV's flags are "
+                            f"bits, combined with `|` (`{joined}`)", certain=True)]
     return []
 
 
