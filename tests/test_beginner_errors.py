@@ -388,3 +388,18 @@ def test_a_forbidden_call_left_at_its_default_method_is_named_where_a_later_chec
     named = [c for c in checks if "method=cv2.FM_8POINT" in c.message]
     assert named and named[0].message.startswith("With the forbidden call allowed, the answer is partly wrong"), \
         [c.message for c in checks]
+
+
+def test_a_depth_opencv_does_not_take_is_told_with_the_ones_it_does():
+    """cv2.cvtColor of a float64 mask (the blind set 1205e's 08/06): OpenCV's own list of depths in the
+    message (8U, 16U, 32F) is said, with the conversion."""
+    from autograder.sandbox import beginner
+
+    message = ("OpenCV(5.0.0) color.simd_helpers.hpp:94: error: (-2:Unspecified error) in function 'cv::impl::"
+               "CvtHelper<VScn, VDcn, VDepth, sizePolicy>::CvtHelper(...) [with VScn = Set<1>; VDcn = Set<3, 4>; "
+               "VDepth = cv::impl::{anonymous}::Set<0, 2, 5>; SizePolicy sizePolicy = NONE]'\n> Unsupported depth "
+               "of input image:\n>     'VDepth::contains(depth)'\n> where\n>     'depth' is 6 (CV_64F)")
+    mask = np.zeros((20, 30), dtype=np.float64)
+    said = beginner._wrong_image("cv2.cvtColor", message, [("src", mask)], {})
+    assert said == "cv2.cvtColor takes src as uint8, uint16 or float32; yours is float64: convert it with " \
+                   "x.astype(np.float32)", said

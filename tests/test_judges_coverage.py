@@ -69,6 +69,7 @@ EXCEPTION_EXPLAINED = (   # autograder/sandbox/beginner.py: the value of the cal
     "{} needs grey uint8 images, shape (H, W): convert with cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) and "
     "np.clip(x, 0, 255).astype(np.uint8)",
     "{} needs a float32 or float64 matrix: build it with dtype=float",
+    "{} takes {} as {}; yours is {}: convert it with {}",
     ", the size of src itself: either src is a level too large (a pyramid level that was never halved by "
     "cv2.pyrDown) or the dstsize is src's own level's",
     # the measured part around a guarded fix (INDEX_AS_Y_X, BUILD_AS_FLOAT)

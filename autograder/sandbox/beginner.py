@@ -236,6 +236,20 @@ def _wrong_image(function, message, arguments, values) -> str:
                 return (f"{function} needs {name} as a grey uint8 image (H, W); yours is {_shown(image)}: "
                         "convert it with cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) and "
                         "np.clip(x, 0, 255).astype(np.uint8)")
+    allowed = re.search(r"VDepth = [^;\]]*Set<([\d, ]+)>", message)
+    given = re.search(r"'depth' is (\d+)", message)
+    if allowed and given:
+        # (the depths the call takes, OpenCV's own list -- cv2.cvtColor: 8U, 16U, 32F -- and the one it was given)
+        names = {0: "uint8", 1: "int8", 2: "uint16", 3: "int16", 4: "int32", 5: "float32", 6: "float64"}
+        takes = [names[int(d)] for d in allowed.group(1).split(",") if int(d) in names]
+        # (the array's own dtype: OpenCV reports an int64 array as the 32-bit depth it converted it to)
+        odd = [(n, image) for n, image in images if str(image.dtype) not in takes]
+        name, wrong = (odd[0][0], str(odd[0][1].dtype)) if odd else (images[0][0], names.get(int(given.group(1)), ""))
+        # (a dtype no OpenCV image has -- int64 -- is told by the general sentence below, with its uint8 fix)
+        if takes and wrong and wrong in _IMAGE_DTYPES:
+            fix = "x.astype(np.float32)" if "float32" in takes else f"x.astype(np.{takes[0]})"
+            return (f"{function} takes {name} as {', '.join(takes[:-1]) + ' or ' + takes[-1] if len(takes) > 1 else takes[0]}"
+                    f"; yours is {wrong}: convert it with {fix}")
     if re.search(r"type\(\)|depth|CV_\d+[UFS]|format|ifunc|Unsupported|data type", message):
         for name, image in images:
             if str(image.dtype) not in _IMAGE_DTYPES:
