@@ -6445,6 +6445,10 @@ def _call_changes(node: ast.Call, words, what, parents):
         other = "degrees" if unit == "radians" else "radians"
         yield "degrees", "remove", f"{arg or 'the angle'} is used in {other} where {unit} are needed " \
                                    f"(the conversion `{dotted}` is missing)"
+    if words.student and dotted.endswith("ndimage.rotate") and not any(k.arg == "reshape" for k in node.keywords):
+        # (the student's code only: scipy's rotate enlarges its output to hold the whole turned image unless told
+        # reshape=False -- the API's warps keep the input's size)
+        yield "flip_keyword", ("reshape", False), ""
     if words.student and dotted in ("np.tile", "numpy.tile", "np.repeat", "numpy.repeat") and len(node.args) == 2 \
             and not node.keywords:
         # (the student's code only: each item repeated where the whole array is tiled, or the other way --
