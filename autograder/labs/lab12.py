@@ -1867,25 +1867,35 @@ def block_matching_uses_block_size(t):
     return judge_max_disparity_default(t, "block_matching")
 
 
-@ex4.check("cost is used: cost=\"ssd\" and cost=\"ncc\" give different maps where the right image is brighter",
+@ex4.check("cost is used: cost=\"ssd\" and cost=\"ncc\" give different maps where the right image is darker",
            points=1, timeout=STEREO_TIMEOUT)
 def block_matching_uses_cost(t):
     """The default cost is SSD; NCC (the extension) forgives a brightness gain SSD does not. Quality checks
-    cannot see a default that runs NCC (it matches as well): on a pair whose right image is 1.5 times
-    brighter the two maps must differ. Where cost="ncc" is not written yet, the extension's checks say so."""
-    scene = truth.scene("random_dots")
-    brighter = np.clip(np.asarray(scene.right, np.float64) * 1.5, 0, 255).astype(np.uint8)
-    what = "block_matching(left, 1.5 x brighter right, cost=...)"
+    cannot see a default that runs NCC (it matches as well): on the slanted plane with its right image at 40% of
+    its brightness (the two costs' maps differ at about half the pixels there, at 2% on random dots) the two
+    maps must differ. Where cost="ncc" is not written yet, the extension's checks say so."""
+    scene = truth.scene("slanted")
+    brighter = np.clip(np.asarray(scene.right, np.float64) * 0.4, 0, 255).astype(np.uint8)
+    what = "block_matching(left, right at 40% brightness, cost=...)"
     ssd = t.call("block_matching", np.array(scene.left), brighter, max_disparity=scene.max_disparity, cost="ssd")
     try:
         ncc = t.call("block_matching", np.array(scene.left), brighter, max_disparity=scene.max_disparity, cost="ncc")
     except StudentFailure:
         return passed("cost=\"ncc\" is not answered: the extension's checks judge it")
     if same_informative_result(ssd, ncc):
-        t.fail(measured(f"{what}: cost=\"ssd\" gives exactly the map cost=\"ncc\" gives, on a pair where the "
-                        "two costs disagree (a brightness gain changes SSD, not NCC): one of the two values of cost "
-                        "is not the cost it names -- look at how cost is compared (\"ssd\" in lower case, as the "
-                        "API writes it)"), mistake="cost is ignored")
+        # (which cost the one map is: SSD for both is NCC not written -- the extension's to judge --, NCC for both
+        # is the default not what it names, this exercise's)
+        gained = replace(scene, right=brighter)
+        near = {cost: float(np.mean(np.abs(np.nan_to_num(np.asarray(ssd, np.float64)) - truth.winner_take_all(
+            gained, 9, cost)) <= 1)) for cost in ("ssd", "ncc")}
+        # (and clearly NCC's: a wrong SSD map ignoring cost is near neither -- the other checks say what it is)
+        if near["ncc"] >= 0.9 and near["ncc"] > near["ssd"] + 0.2:
+            t.fail(measured(f"{what}: cost=\"ssd\" gives exactly the map cost=\"ncc\" gives, on a pair where the "
+                            "two costs disagree (a change of brightness changes SSD, not NCC), and that map is NCC's "
+                            f"({near['ncc']:.0%} of the pixels within 1 px of it, {near['ssd']:.0%} of SSD's): the "
+                            "default cost is not SSD -- look at how cost is compared (\"ssd\" in lower case, as the "
+                            "API writes it)"), mistake="cost is ignored")
+        return passed("cost=\"ncc\" gives the same map as cost=\"ssd\", not NCC's: the extension's checks judge it")
     return passed("cost=\"ssd\" and cost=\"ncc\" give different maps")
 
 

@@ -3515,7 +3515,12 @@ def _student_changes(node, parent, parents, words):
         yield from _item_swaps(node, parent)
     yield from _measure_changes(node)
     if isinstance(node, ast.Slice):
-        yield from _slice_changes(node)
+        # (in a write, one entry where a slice runs on is the slice item's change, `M[0, 1] = s`: not told twice)
+        subscript = parent if isinstance(parent, ast.Subscript) else parents.get(id(parent), (None,))[0]
+        written = isinstance(subscript, ast.Subscript) and isinstance(subscript.ctx, ast.Store)
+        yield from (change for change in _slice_changes(node)
+                    if not (written and isinstance(change[1], tuple) and change[1][0] is not None
+                            and change[1][1] == change[1][0] + 1 and node.upper is None))
     if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Store):
         yield from _slice_item_changes(node)
     if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name):

@@ -387,7 +387,7 @@ MISTAKES = {
             size = image.shape[::-1][:2]
             map1, map2 = cv2.initUndistortRectifyMap(K, np.asarray(dist, np.float64), None, K, size, cv2.CV_32FC1)
             return cv2.remap(image, map1, map2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT)
-        """, ["changing `image.shape[::-1][:2]` to `image.shape[:2][::-1]`"]),
+        """, ["changing `image.shape[::-1]` to `image.shape[1::-1]`"]),
     "undistort the wrong way": ("lab10.ext1", """
         def undistort_image(image, K, dist):
             return cv2.undistort(image, K, -np.asarray(dist, float))
