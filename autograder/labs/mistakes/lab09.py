@@ -1070,3 +1070,10 @@ ADVICE["draw_points truncating the centres with int()"] = ("lab09.ex5", """
                 cv2.circle(out, (int(x), int(y)), int(radius), tuple(int(c) for c in color), -1)
         return out
     """, ["centred at (floor(x), floor(y))", "the centres are truncated (int())", "int(round(x))"])
+
+
+# the blind set 1205f's 09/02: t inserted as it comes, a (3, 1) column made three columns of P
+ADVICE["camera_matrix inserting t without flattening it"] = ("lab09.ex3", """
+    def camera_matrix(K, R, t):
+        return np.asarray(K, dtype=np.float64) @ np.insert(np.asarray(R, dtype=np.float64), 3, t, axis=1)
+    """, ["with t of shape (3, 1)", "np.ravel(t)"])
