@@ -1468,8 +1468,12 @@ def rectify_colour(t):
 
 
 # (the skeleton gives T as (3,); cv2.stereoCalibrate returns it as a (3, 1) column -- the blind set 1205d's 12/04)
-conventions.column_vector(ex3, "rectify", lambda: (lambda pair: (pair.img_l, pair.img_r, pair.K1, pair.K2, pair.R, pair.T))(
-    truth.unrectified_pair(seed=4)), 5, "T")
+def _rectify_arguments() -> tuple:
+    pair = truth.unrectified_pair(seed=4)
+    return pair.img_l, pair.img_r, pair.K1, pair.K2, pair.R, pair.T
+
+
+conventions.column_vector(ex3, "rectify", _rectify_arguments, 5, "T")
 
 
 def _converts_colour(function) -> bool:
@@ -1893,11 +1897,14 @@ def block_matching_uses_cost(t):
             gained, 9, cost)) <= 1)) for cost in ("ssd", "ncc")}
         # (and clearly NCC's: a wrong SSD map ignoring cost is near neither -- the other checks say what it is)
         if near["ncc"] >= 0.9 and near["ncc"] > near["ssd"] + 0.2:
+            capitals = any(isinstance(node, ast.Constant) and node.value in ("SSD", "NCC")
+                           for function in code_of(t).reachable(["block_matching"]) for node in ast.walk(function))
             t.fail(measured(f"{what}: cost=\"ssd\" gives exactly the map cost=\"ncc\" gives, on a pair where the "
                             "two costs disagree (a change of brightness changes SSD, not NCC), and that map is NCC's "
                             f"({near['ncc']:.0%} of the pixels within 1 px of it, {near['ssd']:.0%} of SSD's): the "
-                            "default cost is not SSD -- look at how cost is compared (\"ssd\" in lower case, as the "
-                            "API writes it)"), mistake="cost is ignored")
+                            "default cost is not SSD -- look at how cost is compared")
+                   + (from_code(": your code compares it with a string in capitals, where the API's values are \"ssd\" and \"ncc\"")
+                      if capitals else ""), mistake="cost is ignored")
         return passed("cost=\"ncc\" gives the same map as cost=\"ssd\", not NCC's: the extension's checks judge it")
     return passed("cost=\"ssd\" and cost=\"ncc\" give different maps")
 

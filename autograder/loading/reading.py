@@ -1836,15 +1836,15 @@ def _ones_piece(node, ones: set) -> bool:
     return isinstance(node, ast.Call) and _call_name(node) in ("ones", "ones_like")
 
 
-def _in_a_matrix(factor: str, function) -> bool:
-    """Whether ``factor`` is also written into a matrix (a list literal, `np.diag(...)`): the transform that
-    undoes the normalisation -- only then does a 1 scaled with the coordinates disagree with it."""
-    return any(isinstance(node, (ast.List, ast.Tuple)) and any(isinstance(n, ast.Name) and n.id == factor
-                                                              for e in node.elts for n in ast.walk(e))
-               and any(isinstance(e, (ast.List, ast.Tuple)) for e in node.elts)
-               or isinstance(node, ast.Call) and _call_name(node) == "diag"
-               and any(isinstance(n, ast.Name) and n.id == factor for a in node.args for n in ast.walk(a))
-               for node in _nodes(function))
+def _in_matrices(function) -> set[str]:
+    """The names written into a matrix (a list literal of rows, `np.diag(...)`): the transform that undoes a
+    normalisation -- only a factor found there makes a 1 scaled with the coordinates disagree with it."""
+    names: set[str] = set()
+    for node in _nodes(function):
+        if isinstance(node, (ast.List, ast.Tuple)) and any(isinstance(e, (ast.List, ast.Tuple)) for e in node.elts) \
+                or isinstance(node, ast.Call) and _call_name(node) == "diag":
+            names |= _names_in(node)
+    return names
 
 
 def _homogeneous_one_scaled(name, function) -> list[Finding]:
@@ -1853,6 +1853,7 @@ def _homogeneous_one_scaled(name, function) -> list[Finding]:
     scale belongs to the coordinates before the 1 is appended."""
     ones = {n.targets[0].id for n in _nodes(function) if isinstance(n, ast.Assign) and len(n.targets) == 1
             and isinstance(n.targets[0], ast.Name) and _ones_piece(n.value, set())}
+    in_matrices = _in_matrices(function)
     for node in _nodes(function):
         if not (isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult)):
             continue
@@ -1860,7 +1861,7 @@ def _homogeneous_one_scaled(name, function) -> list[Finding]:
             if isinstance(stacked, ast.Call) and _call_name(stacked) in _STACKS and stacked.args \
                     and isinstance(stacked.args[0], (ast.List, ast.Tuple)) and len(stacked.args[0].elts) >= 2 \
                     and _ones_piece(stacked.args[0].elts[-1], ones) and isinstance(factor, ast.Name) \
-                    and _in_a_matrix(factor.id, function):
+                    and factor.id in in_matrices:
                 first = ast.unparse(stacked.args[0].elts[0])
                 return [Finding(name, _line(node), "the homogeneous 1 is scaled with the coordinates",
                                 f"{name} (line {_line(node)}) computes `{ast.unparse(node)}`: the column of ones is "

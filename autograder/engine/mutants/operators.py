@@ -633,14 +633,18 @@ def _index_of_the_loop(node: ast.Subscript, parents):
     if loop is None or not isinstance(loop.target, ast.Name):
         return
     counter = loop.target.id
+    # (the (array, position) pairs the loop indexes with its own counter, read once per loop)
+    indexed = getattr(loop, "_indexed_by_counter", None)
+    if indexed is None:
+        indexed = loop._indexed_by_counter = {
+            (other.value.id, position) for other in ast.walk(loop)
+            if isinstance(other, ast.Subscript) and isinstance(other.value, ast.Name)
+            for position in range(len(other.slice.elts) if isinstance(other.slice, ast.Tuple) else 1)
+            if _index_at(other, position) == counter}
     items = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
     for position, item in enumerate(items):
-        if not (isinstance(item, ast.Constant) and type(item.value) is int):
-            continue
-        # (the same array read at that position with the loop's index elsewhere in the loop)
-        if any(isinstance(other, ast.Subscript) and other is not node and isinstance(other.value, ast.Name)
-               and other.value.id == node.value.id and _index_at(other, position) == counter
-               for other in ast.walk(loop)):
+        # (a fixed index where the same array is read at that position with the loop's index elsewhere)
+        if isinstance(item, ast.Constant) and type(item.value) is int and (node.value.id, position) in indexed:
             yield "loop_counter", (position, counter), ""
 
 
@@ -665,14 +669,25 @@ def _make_shape_reversed(node, payload):
     return new
 
 
+_UNPACKED: dict = {}   # id(module_defs) -> (module_defs, {helper: the widths its answers are unpacked into})
+
+
 def _unpacked_width(helper: str, module_defs: dict) -> int:
     """How many names the module's functions unpack ``helper``'s answer into (`X, single = _points(p)`: 2),
-    where they all agree; 0 where none does."""
-    widths = {len(node.targets[0].elts) for fn in (module_defs or {}).values() for node in ast.walk(fn)
-              if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple)
-              and isinstance(node.value, ast.Call) and isinstance(node.value.func, ast.Name)
-              and node.value.func.id == helper}
-    return widths.pop() if len(widths) == 1 else 0
+    where they all agree; 0 where none does. The module is read once (every assignment asks)."""
+    kept = _UNPACKED.get(id(module_defs))
+    if kept is None or kept[0] is not module_defs:
+        widths: dict = {}
+        for fn in (module_defs or {}).values():
+            for node in ast.walk(fn):
+                if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
+                        and isinstance(node.value, ast.Call) and isinstance(node.value.func, ast.Name):
+                    widths.setdefault(node.value.func.id, set()).add(len(node.targets[0].elts))
+        if len(_UNPACKED) > 8:   # (the modules read lately: one per grading at a time)
+            _UNPACKED.clear()
+        kept = _UNPACKED[id(module_defs)] = (module_defs, widths)
+    found = kept[1].get(helper, set())
+    return next(iter(found)) if len(found) == 1 else 0
 
 
 def _make_flat_column(node, payload):
