@@ -711,9 +711,9 @@ def _public_memory_to(fresh: list, public: list) -> None:
                 elif key == "repair seen":
                     for function, calls in value.items():
                         sandbox.shared.setdefault(key, {}).setdefault(function, []).extend(calls)
-                elif key == "repair found":   # (the changes told: one mistake, one repair, hidden checks too)
-                    for function, mutants in value.items():
-                        sandbox.shared.setdefault(key, {}).setdefault(function, list(mutants))
+                elif key in ("repair found", "repair complete"):   # (the changes told, and whether every other
+                    for function, told in value.items():          # was tried: one mistake, one repair, hidden checks too)
+                        sandbox.shared.setdefault(key, {}).setdefault(function, list(told) if key == "repair found" else told)
 
 
 def _remember_check(check: Check, trial: Trial) -> None:

@@ -2200,6 +2200,10 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = No
     # One time per grading for naming by mutants and by repairs (naming.GRADING_SECONDS): what
     # failing everything costs stays bounded as it was.
     spent = trial.sandbox.shared.setdefault(naming.SPENT, [0.0])
+    # A slow function (a pipeline on photographs) needs more than the check's time for the confirmation of a
+    # change found (its reference and the change run on every confirmation input): that time is added to the
+    # check's, as measured on this machine's own calls (a slower machine's calls take longer, its names alike).
+    seconds += min(seconds, max(0.0, _confirming_seconds(trial) - RESERVE))
     seconds = min(seconds, naming.GRADING_SECONDS - spent[0])
     if seconds <= 0.2:
         return None
@@ -2215,6 +2219,14 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = No
         spent[0] += clock.used()
         naming.forget_measures()
         naming.release_helper()
+
+
+def _confirming_seconds(trial) -> float:
+    """The time kept for confirming a change once one is found: the reference and the change each run on
+    about :data:`CONFIRMATION_INPUTS` inputs, at the student's own time per call (with the helpers' and the
+    grader's own work beside them, measured: half as much again), or :data:`RESERVE` if longer."""
+    per_call = getattr(trial, "student_seconds", 0.0) / max(1, len(getattr(trial, "calls", ()) or ()))
+    return max(RESERVE, 3 * CONFIRMATION_INPUTS * per_call)
 
 
 def _recorded(trial) -> dict:
@@ -2834,8 +2846,13 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     reserve = min(max(RESERVE, CONFIRMATION_CALLS * variant.seconds_per_call), clock.left() / 2)
     # (and once a change is found, the time its confirmation takes: the reference and the change each
     # run on every confirmation input -- a whole pipeline each for a slow function)
-    confirming = max(reserve, 2 * CONFIRMATION_INPUTS * variant.seconds_per_call)
+    confirming = max(reserve, _confirming_seconds(trial))
     for mutant in list(earlier) + _near_the_raise([m for m in runnable if m.key not in known], trial, function):
+        if mutant.key not in known and any(m.key in known for m in candidates):
+            # A change told on an earlier check of the function gives this check's answers too: that search
+            # looked for the other changes mending alike (told beside it), this one need not look again.
+            complete = shared.setdefault("repair complete", {}).get(function, complete)
+            break
         if clock.left() <= (confirming if candidates else reserve if near and variant.replayable else 0) \
                 or (tries is not None and variant.screenings >= tries):
             complete = False
@@ -4043,6 +4060,7 @@ class _Variants:
     def repair(self, fixes, complete: bool = True) -> Repair:
         """The repair told for ``fixes`` [(mutant, fix)], kept for the grading's later checks."""
         self.trial.sandbox.shared["repair found"][self.function] = [mutant for mutant, _ in fixes]
+        self.trial.sandbox.shared.setdefault("repair complete", {})[self.function] = complete
         usable = (self.confirmations[2] or []) if self.confirmations else []
         # (the step a change skips is read for the changes told only: reading it walks the def, once per change)
         # (a centring taken out, where the reference centres too, mends by making the two ends agree: the end
