@@ -5259,3 +5259,31 @@ def test_numpy_slips_of_the_blind_set_1205f_are_changes_tried():
     assert ("1 + math.pow(r2, 2) + np.sqrt(r2)", "1 + np.power(r2, 2) + np.sqrt(r2)") in changes \
         or ("math.pow(r2, 2)", "np.power(r2, 2)") in changes, changes
     assert not any("math.sqrt" in after for _, after in changes), changes
+
+
+def test_a_test_of_one_value_where_a_bound_belongs_is_a_change_tried():
+    """`rank != 8` where `rank < 8` belongs (the blind set 1205g's 08/03) is a change tried; a comparison of two
+    names is not made a bound."""
+    student, mutants = _read("""
+        import numpy as np
+
+        def graded(A, n, m):
+            if np.linalg.matrix_rank(A) != 8:
+                raise ValueError("degenerate")
+            return n == m
+    """)
+    changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None and m.operator == "compare"}
+    assert ("np.linalg.matrix_rank(A) != 8", "np.linalg.matrix_rank(A) < 8") in changes, changes
+    assert not any(before == "n == m" for before, _ in changes), changes
+
+
+def test_a_conditional_binding_loosest_is_a_change_tried():
+    """`f * X / z if z is not None else mean` where the conditional belongs to the last operand (the blind set
+    1205g's 10/02) is a change tried: the brackets put round the conditional and its operand."""
+    student, mutants = _read("""
+        def graded(X, f, z=None):
+            return f * X / float(z) if z is not None else X.mean()
+    """)
+    changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None and m.operator == "precedence"}
+    assert ("f * X / float(z) if z is not None else X.mean()",
+            "f * X / (float(z) if z is not None else X.mean())") in changes, changes

@@ -571,7 +571,9 @@ def test_the_references_hold_none_of_these_findings():
            "a sine or cosine from the other by a square root: its sign is lost",
            "a dimension tested after the array was made two-dimensional", "the RANSAC mask's outliers kept",
            "a root written as a power of 1/n (** binds tighter than /)", "a grid's rows taken for its x",
-           "the result rounded to a few decimals"}
+           "the result rounded to a few decimals", "a value kept in a loop is the array the loop rewrites",
+           "one array given two names by a chained assignment", "a lambda made in a loop reads the loop's variable when called",
+           "rows of np.empty left unwritten where a loop continues", "infinity written into an array before it is filtered"}
     for path in sorted((ROOT / "reference_solutions").glob("lab*.py")):
         assert not one(path.read_text()) & new, path.name
 
@@ -1500,3 +1502,116 @@ def test_opencv_flags_joined_with_or_are_read():
         """
     assert one(source) == {"OpenCV flags joined with `or` or `and`"}, one(source)
     assert not one(source.replace(" or ", " | "))
+
+
+def test_a_best_kept_as_another_name_for_the_array_the_loop_rewrites_is_read():
+    """`best_inliers = mask` where the loop writes `mask` in place at every turn (the blind set 1205g's 08/04,
+    `np.less(err, t, out=mask)`): the best kept is the last turn's. A copy, or a mask made anew each turn, is
+    not read; nor a name never read after the loop."""
+    source = """
+        import numpy as np
+
+        def ransac(err_of, n, trials):
+            best_count, best = 0, None
+            mask = np.zeros(n, dtype=bool)
+            for _ in range(trials):
+                {write}
+                if mask.sum() > best_count:
+                    best_count, best = mask.sum(), {kept}
+            return best
+        """
+    read = {"a value kept in a loop is the array the loop rewrites"}
+    for write in ("np.less(err_of(), 3.0, out=mask)", "mask[:] = err_of() < 3.0", "np.copyto(mask, err_of() < 3.0)"):
+        assert one(source.format(write=write, kept="mask")) == read, write
+        assert not one(source.format(write=write, kept="mask.copy()")), write
+    assert not one(source.format(write="mask = err_of() < 3.0", kept="mask"))
+    assert not one(source.format(write="np.less(err_of(), 3.0, out=mask)", kept="mask").replace("return best", "return best_count"))
+
+
+def test_one_array_given_two_names_by_a_chained_assignment_is_read():
+    """`xs = ys = np.full(n, np.nan)` then each written into (the blind set 1205g's 09/01): one array. Two
+    arrays, or a chained number, are not read."""
+    source = """
+        import numpy as np
+
+        def project(points, f):
+            n = len(points)
+            {made}
+            for i, (X, Y, Z) in enumerate(points):
+                xs[i] = f * X / Z
+                ys[i] = f * Y / Z
+            return np.stack([xs, ys], axis=1)
+        """
+    assert one(source.format(made="xs = ys = np.full(n, np.nan)")) == {"one array given two names by a chained assignment"}
+    assert not one(source.format(made="xs, ys = np.full(n, np.nan), np.full(n, np.nan)"))
+    assert not one(source.format(made="xs = ys = 0").replace("xs[i] = ", "xs = ").replace("ys[i] = ", "ys = "))
+
+
+def test_a_lambda_made_in_a_loop_reading_its_variable_is_read():
+    """`[lambda p: project(p, f) for f in fs]` (the blind sets 1205g's 09/02 and 1204g's 10/05): every lambda
+    uses the last f. Bound as a default, or called in the loop's own turn, nothing is read."""
+    made = """
+        def project_all(points, fs):
+            cameras = {cameras}
+            return [camera(points) for camera in cameras]
+        """
+    read = {"a lambda made in a loop reads the loop's variable when called"}
+    assert one(made.format(cameras="[lambda p: project(p, f) for f in fs]")) == read
+    assert not one(made.format(cameras="[lambda p, f=f: project(p, f) for f in fs]"))
+    assert one("""
+        def project_all(points, fs):
+            cameras = []
+            for f in fs:
+                cameras.append(lambda p: project(p, f))
+            return [camera(points) for camera in cameras]
+        """) == read
+    assert not one("""
+        def project_all(points, fs):
+            return [(lambda p: project(p, f))(points) for f in fs]
+        """.replace("(lambda p: project(p, f))(points)", "project(points, f)"))
+
+
+def test_rows_of_np_empty_a_loop_continues_past_are_read():
+    """`poses = np.empty((F, 6))` and a `continue` before the row is written (the blind set 1205g's 10/06): those
+    rows are garbage. Made with np.full, or the row written before continuing, nothing is read."""
+    source = """
+        import numpy as np
+
+        def track(frames):
+            poses = {made}
+            for i, frame in enumerate(frames):
+                found, pose = detect(frame)
+                if not found:
+                    {skipped}
+                    continue
+                poses[i] = pose
+            return poses
+        """
+    read = {"rows of np.empty left unwritten where a loop continues"}
+    assert one(source.format(made="np.empty((len(frames), 6))", skipped="pass")) == read
+    assert not one(source.format(made="np.full((len(frames), 6), np.nan)", skipped="pass"))
+    assert not one(source.format(made="np.empty((len(frames), 6))", skipped="poses[i] = np.nan"))
+
+
+def test_infinity_written_before_a_filter_is_read():
+    """`squared[:, :d] = np.inf` and then a box filter (cv2.blur, or a helper of the module filtering its first
+    parameter; the blind set 1205g's 12/02): inf - inf is NaN in the filter's sums. Set after the filter,
+    nothing is read."""
+    source = """
+        import cv2
+        import numpy as np
+
+        def _box_mean(image, k):
+            return cv2.blur(image, (k, k))
+
+        def volume(left, right, d, k):
+            squared = (left - right) ** 2
+            {before}
+            cost = {filtered}
+            {after}
+            return cost
+        """
+    read = {"infinity written into an array before it is filtered"}
+    for filtered in ("cv2.blur(squared, (k, k))", "_box_mean(squared, k)"):
+        assert one(source.format(before="squared[:, :d] = np.inf", filtered=filtered, after="pass")) == read, filtered
+        assert not one(source.format(before="pass", filtered=filtered, after="cost[:, :d] = np.inf")), filtered

@@ -137,11 +137,13 @@ def read_source(text: str, api=frozenset()) -> Reading:
         arrays = frozenset(target.id for node in tree.body if isinstance(node, ast.Assign)
                            and isinstance(node.value, ast.Call) and _call_name(node.value) in _MODULE_ARRAYS
                            for target in node.targets if isinstance(target, ast.Name))
+        # (and its helpers that filter their first parameter: `_box_mean(cost, k)` is a cv2.blur)
+        filtering = frozenset(_FILTERS) | frozenset(name for name, node in functions.items() if _filters_first(node))
         findings, calls = {}, {}
         rows = {name: _read_as_rows(node) for name, node in functions.items()}
         for name, node in functions.items():
             findings[name] = _read_function(node, name in api, lists) + _transposed_into_rows(name, node, functions, rows) \
-                + _module_array_changed(name, node, arrays)
+                + _module_array_changed(name, node, arrays) + _infinity_filtered(name, node, filtering)
             calls[name] = {called for called in _called_names(node) if called in functions and called != name}
         return Reading(findings, calls)
     except TooLarge as exc:
@@ -235,6 +237,10 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _third_operand_as_out(name, function)
     found += _twin_lopsided(name, function)
     found += _alias_changed(name, function)
+    found += _kept_alias_rewritten(name, function)
+    found += _chained_one_array(name, function)
+    found += _late_bound_lambda(name, function)
+    found += _empty_rows_skipped(name, function)
     found += _same_array_appended(name, function)
     found += _running_best_overwritten(name, function)
     found += _rolled_strip_one_sign(name, function)
@@ -1501,6 +1507,205 @@ def _alias_changed(name, function) -> list[Finding]:
                                 f"{'list' if original in lists else 'array'}, "
                                 f"so `{original}` changes with it" + (" at every turn of the loop" if looping else "")
                                 + f"; take a copy (`{changed.id} = {original}.copy()`)", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ a kept value that is the array the loop rewrites
+def _written_in_place(node) -> str | None:
+    """The name ``node`` writes into in place, if it does: ``a[...] = v``, ``a += v`` of an array, a call's
+    ``out=a``, ``np.copyto(a, v)``, ``a.fill(v)``."""
+    if isinstance(node, ast.Assign):
+        for target in node.targets:
+            if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name):
+                return target.value.id
+    if isinstance(node, ast.AugAssign) and isinstance(node.target, ast.Subscript) \
+            and isinstance(node.target.value, ast.Name):
+        return node.target.value.id
+    if isinstance(node, ast.Call):
+        out = next((k.value for k in node.keywords if k.arg == "out"), None)
+        if isinstance(out, ast.Tuple) and out.elts:
+            out = out.elts[0]
+        if isinstance(out, ast.Name):
+            return out.id
+        if _call_name(node) == "copyto" and node.args and isinstance(node.args[0], ast.Name):
+            return node.args[0].id
+        if isinstance(node.func, ast.Attribute) and node.func.attr == "fill" and isinstance(node.func.value, ast.Name):
+            return node.func.value.id
+    return None
+
+
+def _kept_alias_rewritten(name, function) -> list[Finding]:
+    """In a loop, ``best = mask`` (another name for the array, no copy) where the loop writes ``mask`` in place
+    at every turn (``np.less(err, t, out=mask)``, ``mask[:] = ...``) and ``mask`` is made once, outside it: the
+    value kept is that same array, so after the loop it holds the last turn's values, not those kept."""
+    made = _assigned_names(function)
+    arrays = {target for target, values in made.items()
+              if values and all(isinstance(v, (ast.Call, ast.Subscript, ast.List, ast.ListComp)) for v in values)}
+    read_at: dict = {}
+    for n in _nodes(function):
+        if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load):
+            read_at.setdefault(n.id, []).append(_line(n))
+    for loop in (node for node in _nodes(function) if isinstance(node, (ast.For, ast.While))):
+        nodes = [n for statement in loop.body for n in ast.walk(statement)]
+        rebound = {n.id for n in nodes if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+        written = {}
+        for n in nodes:
+            target = _written_in_place(n)
+            if target is not None:
+                written.setdefault(target, n)
+        end = max((_line(n) for n in nodes), default=_line(loop))
+        for n in nodes:
+            if not (isinstance(n, ast.Assign) and len(n.targets) == 1):
+                continue
+            pairs = zip(n.targets[0].elts, n.value.elts) if isinstance(n.targets[0], ast.Tuple) \
+                and isinstance(n.value, ast.Tuple) and len(n.targets[0].elts) == len(n.value.elts) \
+                else [(n.targets[0], n.value)]
+            for kept, original in pairs:
+                if not (isinstance(kept, ast.Name) and isinstance(original, ast.Name)) or kept.id == original.id \
+                        or original.id not in arrays or original.id in rebound or original.id not in written:
+                    continue
+                if not any(line > end for line in read_at.get(kept.id, ())):
+                    continue
+                write = written[original.id]
+                return [Finding(name, _line(n), "a value kept in a loop is the array the loop rewrites",
+                                f"{name} keeps `{kept.id} = {original.id}` (line {_line(n)}), another name for the same "
+                                f"array, not a copy, and the loop writes `{original.id}` in place at every turn "
+                                f"(line {_line(write)}): after the loop `{kept.id}` holds the last turn's values, not "
+                                f"those kept; keep a copy (`{kept.id} = {original.id}.copy()`)", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ one array under two names from the start
+def _chained_one_array(name, function) -> list[Finding]:
+    """``xs = ys = np.full(n, np.nan)``: a chained assignment gives one array two names, and each is then
+    written into as if it were its own (``xs[i] = ...``, ``ys[i] = ...``): every write lands in both."""
+    made = _assigned_names(function)
+    written: dict = {}
+    for n in _nodes(function):
+        target = _written_in_place(n)
+        if target is not None:
+            written.setdefault(target, n)
+    for n in _nodes(function):
+        if not (isinstance(n, ast.Assign) and len(n.targets) >= 2
+                and all(isinstance(t, ast.Name) for t in n.targets)
+                and isinstance(n.value, (ast.Call, ast.List, ast.ListComp, ast.Dict))):
+            continue
+        names = list(dict.fromkeys(t.id for t in n.targets))
+        # (each of them written into, and none given an array of its own elsewhere)
+        if len(names) >= 2 and all(x in written and len(made.get(x, ())) == 1 for x in names[:2]):
+            first, second = names[:2]
+            return [Finding(name, _line(n), "one array given two names by a chained assignment",
+                            f"{name} makes `{first}` and `{second}` with `{ast.unparse(n)[:80]}` (line {_line(n)}): a "
+                            f"chained assignment gives one array two names, so what is written into `{second}` "
+                            f"(line {_line(written[second])}) is written into `{first}` too; make each its own "
+                            f"(`{first} = ...` and `{second} = ...` on lines of their own)", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ a lambda reading a loop's variable late
+def _late_bound_lambda(name, function) -> list[Finding]:
+    """``[lambda p: project(p, f) for f in fs]`` (or ``fns.append(lambda ...)`` in a ``for f`` loop): the lambda
+    reads ``f`` when it is called, after the loop has ended, so every one of them uses f's last value."""
+    def free_reads(lam: ast.Lambda) -> set:
+        own = {a.arg for a in lam.args.args + lam.args.kwonlyargs + lam.args.posonlyargs}
+        return {n.id for n in ast.walk(lam.body) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)} - own
+
+    def targets(node) -> set:
+        return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+
+    for n in _nodes(function):
+        places = []
+        if isinstance(n, (ast.ListComp, ast.GeneratorExp, ast.SetComp)) and isinstance(n.elt, ast.Lambda):
+            places = [(n.elt, set().union(*(targets(g.target) for g in n.generators)))]
+        elif isinstance(n, ast.DictComp) and isinstance(n.value, ast.Lambda):
+            places = [(n.value, set().union(*(targets(g.target) for g in n.generators)))]
+        elif isinstance(n, ast.For):
+            loop_names = targets(n.target)
+            places = [(arg, loop_names) for statement in n.body for call in ast.walk(statement)
+                      if isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute)
+                      and call.func.attr in ("append", "extend", "insert")
+                      for arg in call.args if isinstance(arg, ast.Lambda)]
+        for lam, loop_names in places:
+            late = sorted(free_reads(lam) & loop_names)
+            if late:
+                var = late[0]
+                return [Finding(name, _line(lam), "a lambda made in a loop reads the loop's variable when called",
+                                f"{name} makes `{ast.unparse(lam)[:70]}` in a loop over `{var}` (line {_line(lam)}): a "
+                                f"lambda reads `{var}` when it is called, after the loop has ended, so every one of "
+                                f"them uses `{var}`'s last value; bind it as it is made (`lambda ..., {var}={var}: "
+                                f"...`) or compute each result in the loop", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ np.empty rows a loop skips
+def _empty_rows_skipped(name, function) -> list[Finding]:
+    """``out = np.empty((n, 6))`` filled row by row in a loop that ``continue``s past some turns before writing
+    their row: those rows hold whatever the memory held (not NaN, not 0)."""
+    empties = {}
+    for n in _nodes(function):
+        if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name) \
+                and isinstance(n.value, ast.Call) and _call_name(n.value) in ("empty", "empty_like"):
+            empties[n.targets[0].id] = n
+    if not empties:
+        return []
+    for loop in (node for node in _nodes(function) if isinstance(node, (ast.For, ast.While))):
+        body = list(_loop_body_nodes(loop))
+        writes = [n for n in body if _written_in_place(n) in empties and isinstance(n, ast.Assign)]
+        for skip in (n for n in body if isinstance(n, ast.Continue)):
+            # (the block that continues writes nothing of the array before it: `out[i] = np.nan; continue` is fine)
+            block = next((b for n in body if isinstance(n, (ast.If, ast.Try, ast.With))
+                          for b in (getattr(n, "body", []), getattr(n, "orelse", [])) if skip in b), None)
+            if block is None or any(_written_in_place(s) in empties for s in block):
+                continue
+            later = [w for w in writes if _line(w) > _line(skip)]
+            if later:
+                array = _written_in_place(later[0])
+                return [Finding(name, _line(skip), "rows of np.empty left unwritten where a loop continues",
+                                f"{name} makes `{array}` with np.empty (line {_line(empties[array])}), which holds "
+                                f"whatever the memory held, and the turns that `continue` (line {_line(skip)}) never "
+                                f"write their row (line {_line(later[0])}): those rows are garbage, not the value the "
+                                f"API asks; make it with np.full(..., np.nan) (or write the row before continuing)",
+                                certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ infinity through a box filter
+_FILTERS = {"blur", "boxFilter", "filter2D", "GaussianBlur", "sepFilter2D", "uniform_filter", "convolve",
+            "correlate", "convolve2d", "fftconvolve", "gaussian_filter"}
+
+
+def _filters_first(function) -> bool:
+    """Whether ``function`` passes its first parameter to a filter (:data:`_FILTERS`) as the image filtered."""
+    parameters = function.args.posonlyargs + function.args.args
+    return bool(parameters) and any(
+        isinstance(n, ast.Call) and _call_name(n) in _FILTERS and n.args and isinstance(n.args[0], ast.Name)
+        and n.args[0].id == parameters[0].arg for n in ast.walk(function))
+
+
+def _infinity_filtered(name, function, filters=frozenset(_FILTERS)) -> list[Finding]:
+    """``cost[:, :d] = np.inf`` and then ``cv2.blur(cost, ...)`` (or a helper of the module that filters its
+    first parameter, ``filters``): a filter's sums meet inf - inf (NaN) and spread inf or NaN over every window
+    holding one; comparisons with NaN then choose nothing (argmin takes the first)."""
+    def infinite(node) -> bool:
+        return (isinstance(node, ast.Attribute) and node.attr == "inf") or (
+            isinstance(node, ast.Call) and _call_name(node) == "float" and node.args
+            and isinstance(node.args[0], ast.Constant) and str(node.args[0].value).lower() in ("inf", "+inf"))
+
+    set_inf = {}
+    for n in _nodes(function):
+        if isinstance(n, ast.Assign) and infinite(n.value):
+            for target in n.targets:
+                if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name):
+                    set_inf.setdefault(target.value.id, n)
+    for n in _nodes(function):
+        if isinstance(n, ast.Call) and _call_name(n) in filters and n.args and isinstance(n.args[0], ast.Name) \
+                and n.args[0].id in set_inf and _line(n) > _line(set_inf[n.args[0].id]):
+            array = n.args[0].id
+            return [Finding(name, _line(set_inf[array]), "infinity written into an array before it is filtered",
+                            f"{name} writes inf into `{array}` (line {_line(set_inf[array])}) and then filters it "
+                            f"with `{_call_name(n)}` (line {_line(n)}): a filter's sums meet inf - inf, which is NaN, "
+                            f"and carry inf or NaN into every window that holds one (a comparison with NaN chooses "
+                            f"nothing); filter first, then set the entries to inf", certain=True)]
     return []
 
 

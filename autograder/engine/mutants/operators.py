@@ -3642,10 +3642,22 @@ def _student_changes(node, parent, parents, words):
         yield from _loop_order_changes(node)
     if isinstance(node, ast.Compare) and len(node.ops) == 1:
         yield from _precedence_slips(node)
+    if words.student and isinstance(node, ast.IfExp) and isinstance(node.body, ast.BinOp):
+        # `f * X / z if z is not None else mean` for `f * X / (z if z is not None else mean)`: the conditional
+        # binds loosest, so its else-branch is the whole answer, not the last operand
+        body = node.body
+        yield "precedence", (f"{ast.unparse(body.left) if not isinstance(body.left, ast.IfExp) else _grouped(body.left)} "
+                             f"{ast.unparse(ast.BinOp(ast.Name('a'), body.op, ast.Name('b'))).split()[1]} "
+                             f"({ast.unparse(body.right)} if {ast.unparse(node.test)} else {ast.unparse(node.orelse)})"), ""
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _COMPARED:
         for other in _COMPARED[type(node.ops[0])]:
             yield "compare", other, ""   # `x > 0` for `x >= 0`, or the other way
         yield from _threshold_changes(node)
+    if words.student and isinstance(node, ast.Compare) and len(node.ops) == 1 and type(node.ops[0]) in _BOUNDED \
+            and isinstance(node.comparators[0], ast.Constant) and type(node.comparators[0].value) in (int, float) \
+            and not isinstance(node.left, ast.Constant):
+        for other in _BOUNDED[type(node.ops[0])]:
+            yield "compare", other, ""   # `rank != 8` for `rank < 8`: one value tested where a bound belongs
     if isinstance(parent, ast.List) and len(parent.elts) >= 3 and not _entry_of_literal(node, parents) \
             and isinstance(node, (ast.Name, ast.Subscript, ast.Attribute, ast.BinOp, ast.Call)) \
             and any(_negated(item) for item in parent.elts):
@@ -4005,6 +4017,7 @@ _INTEGER_TYPES = {"int", "np.int32", "np.int64", "np.uint8", "np.int16", "np.uin
 # A comparison a student writes strictly where it is not (or the wrong way round), and the operators
 # a subtraction or division is regrouped with (`a - b + c` is not `a - (b + c)`).
 _COMPARED = {ast.Lt: ("LtE", "Gt"), ast.LtE: ("Lt", "GtE"), ast.Gt: ("GtE", "Lt"), ast.GtE: ("Gt", "LtE")}
+_BOUNDED = {ast.NotEq: ("Lt", "Gt"), ast.Eq: ("LtE", "GtE")}
 _REGROUPED = {ast.Sub: (ast.Add, ast.Sub), ast.Div: (ast.Mult, ast.Div)}
 
 

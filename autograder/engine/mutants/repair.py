@@ -3658,7 +3658,11 @@ class _Variants:
             return None
         except Exception:  # noqa: BLE001 - a failed check, the variant's exception, a call out of time
             verdict = Verdict(0.0)
-        if not any(call[0] == self.function for call in replayed.calls + replayed.served):
+        # (a call of the function that raised is a call too: the check fails by the variant's exception --
+        # `not rank != 8` refuses the exact pairs the student's own code fitted)
+        raised = getattr(replayed, "raised", None)
+        if not any(call[0] == self.function for call in replayed.calls + replayed.served) \
+                and not (raised and raised[0] == self.function):
             return None
         return verdict is None or (isinstance(verdict, Verdict) and verdict.fraction >= 1.0)
 

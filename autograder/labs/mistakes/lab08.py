@@ -569,6 +569,14 @@ MISTAKES = {
         "rows, cols = min(height, moving.shape[0]), min(width, moving.shape[1])\n"
         "canvas[:rows, :cols] = moving[:rows, :cols]\n"
         "return apply_homography(canvas, H, (width, height))"), ["`apply_homography(moving, H, (width, height))`"]),
+    # the blind set 1205g's 08/03: a degeneracy test of one rank (`!= 8`) where a bound belongs, refusing every
+    # noisy system (rank 9); its negation, which refuses the exact pairs the code fitted, is no repair
+    "homography_dlt refusing every system whose rank is not exactly 8": ("lab08.ex2", reference_def_with(
+        "lab08_homographies", "homography_dlt", "A = _dlt_rows(src_n, dst_n)",
+        "A = _dlt_rows(src_n, dst_n)\n"
+        "if np.linalg.matrix_rank(A) != 8:\n"
+        "    raise ValueError('degenerate point configuration')"),
+        ["to `np.linalg.matrix_rank(A) < 8`"]),
     "warp_to_reference matching the reference's brightness": ("lab08.ex2", reference_def_with(
         "lab08_homographies", "warp_to_reference", "return apply_homography(moving, H, (width, height))",
         "warped = apply_homography(moving, H, (width, height))\n"
