@@ -5287,3 +5287,14 @@ def test_a_conditional_binding_loosest_is_a_change_tried():
     changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None and m.operator == "precedence"}
     assert ("f * X / float(z) if z is not None else X.mean()",
             "f * X / (float(z) if z is not None else X.mean())") in changes, changes
+
+
+def test_a_sum_of_squares_named_where_its_root_belongs_is_a_change_tried():
+    """`r = x ** 2 + y ** 2` where the radius belongs (the blind set 1205g's 09/05) is a change tried: its root."""
+    student, mutants = _read("""
+        def graded(x, y, k1):
+            r = x ** 2 + y ** 2
+            return x * (1 + k1 * r ** 2)
+    """)
+    changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None and m.operator == "measure"}
+    assert ("x ** 2 + y ** 2", "np.sqrt(x ** 2 + y ** 2)") in changes, changes

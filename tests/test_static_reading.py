@@ -573,7 +573,8 @@ def test_the_references_hold_none_of_these_findings():
            "a root written as a power of 1/n (** binds tighter than /)", "a grid's rows taken for its x",
            "the result rounded to a few decimals", "a value kept in a loop is the array the loop rewrites",
            "one array given two names by a chained assignment", "a lambda made in a loop reads the loop's variable when called",
-           "rows of np.empty left unwritten where a loop continues", "infinity written into an array before it is filtered"}
+           "rows of np.empty left unwritten where a loop continues", "infinity written into an array before it is filtered",
+           "every view given to the calibration as one view"}
     for path in sorted((ROOT / "reference_solutions").glob("lab*.py")):
         assert not one(path.read_text()) & new, path.name
 
@@ -1615,3 +1616,20 @@ def test_infinity_written_before_a_filter_is_read():
     for filtered in ("cv2.blur(squared, (k, k))", "_box_mean(squared, k)"):
         assert one(source.format(before="squared[:, :d] = np.inf", filtered=filtered, after="pass")) == read, filtered
         assert not one(source.format(before="pass", filtered=filtered, after="cost[:, :d] = np.inf")), filtered
+
+
+def test_every_view_given_to_the_calibration_as_one_is_read():
+    """`[np.concatenate(object_points)]` given to cv2.calibrateCamera (the blind set 1205g's 09/04): one view of
+    every view's points. The per-view lists as they are, nothing is read."""
+    source = """
+        import cv2
+        import numpy as np
+
+        def calibrate(object_points, image_points, size):
+            {merge}
+            rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, size, None, None)
+            return K, dist, rms
+        """
+    assert one(source.format(merge="object_points = [np.concatenate(object_points)]")) \
+        == {"every view given to the calibration as one view"}
+    assert not one(source.format(merge="object_points = [np.asarray(p, np.float32) for p in object_points]"))

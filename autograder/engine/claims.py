@@ -116,10 +116,11 @@ def without_where_to_look(sentence: str) -> str:
     return sentence
 
 
-def without_guessed_cause(sentence: str, mistake) -> str:
+def without_guessed_cause(sentence: str, mistake, inferred: bool = False) -> str:
     """``sentence`` without its clause "it looks like <mistake>..." (up to the clause's full stop), the
-    punctuation mended; ``sentence`` itself where it holds no such clause."""
-    if not isinstance(mistake, str) or mistake not in GUESSED:
+    punctuation mended; ``sentence`` itself where it holds no such clause. Only a name registered as
+    :func:`guessed`, or (``inferred``) any name the check inferred from what the answers look like."""
+    if not isinstance(mistake, str) or not (inferred or mistake in GUESSED):
         return sentence
     match = re.search(r"(?:[,;:]?\s*(?:but|so)?\s*)?\bit looks like " + re.escape(mistake) + r"[^.]*", sentence,
                       flags=re.IGNORECASE)

@@ -600,8 +600,10 @@ def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: T
     lead = first.rstrip() + ("" if not first.strip() or first.rstrip().endswith((".", ":", "!", "?")) else ".")
     if verdict.mistake:
         # (a cause the check guessed from its measures gives way to a slip read in the code: "the default
-        # smoothness is far too large" where one array appended at every turn makes every row the last)
-        guessed = without_guessed_cause(lead, verdict.mistake)
+        # smoothness is far too large" where one array appended at every turn makes every row the last; and so
+        # does any cause it inferred from what the answers look like, "it looks like x is computed from Y", where
+        # the code computes x from X into an array that is also y's: the reading is certain, the look is not)
+        guessed = without_guessed_cause(lead, verdict.mistake, inferred=True)
         if guessed != lead:
             return replace(verdict, message=f"{guessed} {sentence}{newline}{rest}", mistake=finding.mistake, hint="")
         return replace(verdict, message=f"{lead} {sentence}{newline}{rest}")

@@ -2044,6 +2044,9 @@ def calibration_result(t: Trial, images, pattern, square=truth.CALIBRATION_SQUAR
     return what, K, dist, float(np.asarray(rms).ravel()[0])
 
 
+NOT_CORRESPONDING = guessed("the object points do not correspond to the corners")
+
+
 def judge_calibration(t: Trial, images, K_true, pattern, square=truth.CALIBRATION_SQUARE):
     """Calibrate on rendered views of a board with ``pattern`` inner corners, rendered with ``K_true``."""
     what, K, dist, rms = calibration_result(t, images, pattern, square)
@@ -2062,11 +2065,14 @@ def judge_calibration(t: Trial, images, K_true, pattern, square=truth.CALIBRATIO
         # (and the order is a guess: a change of the code confirmed to mend it -- a coordinate left unscaled
         # in a loop building them row by row -- takes its place, and the recipe's hint with it)
         ordered = OBJECT_POINTS_ROW_BY_ROW.found(code_of(t).reachable(["calibrate"]))
+        # (both causes are inferred from the error alone: a slip read in the code -- every view merged into one --
+        # takes their place)
         t.fail(f"{what}: the reprojection error is {rms:.2f} px (a good calibration on these clean "
-               "views has < 0.1 px): the object points do not correspond to the detected corners"
-               + ("." if ordered else f": it looks like {OBJECT_POINTS_ORDER} (column by column, say, or for "
-                  "another pattern_size)."), hint=OBJECT_POINTS_HINT.said(t),
-               mistake="the object points do not correspond to the corners" if ordered else OBJECT_POINTS_ORDER)
+               "views has < 0.1 px)"
+               + (f": it looks like {NOT_CORRESPONDING} detected." if ordered else ": the object points do not "
+                  f"correspond to the detected corners: it looks like {OBJECT_POINTS_ORDER} (column by column, say, "
+                  "or for another pattern_size)."),
+               hint=OBJECT_POINTS_HINT.said(t), mistake=NOT_CORRESPONDING if ordered else OBJECT_POINTS_ORDER)
     if np.abs(K[:2, 2] - K_true[1::-1, 2]).max() < 3.0 and c_error.max() > 3.0:
         t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
                "(rows, cols)? OpenCV wants (width, height).", mistake="the principal point is swapped")

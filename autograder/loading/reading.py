@@ -241,6 +241,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _chained_one_array(name, function)
     found += _late_bound_lambda(name, function)
     found += _empty_rows_skipped(name, function)
+    found += _views_merged(name, function)
     found += _same_array_appended(name, function)
     found += _running_best_overwritten(name, function)
     found += _rolled_strip_one_sign(name, function)
@@ -1666,6 +1667,36 @@ def _empty_rows_skipped(name, function) -> list[Finding]:
                                 f"write their row (line {_line(later[0])}): those rows are garbage, not the value the "
                                 f"API asks; make it with np.full(..., np.nan) (or write the row before continuing)",
                                 certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ every view given as one
+_CALIBRATIONS = {"calibrateCamera", "calibrateCameraExtended", "calibrateCameraRO", "stereoCalibrate"}
+_JOINS = {"concatenate", "vstack", "hstack", "row_stack", "stack"}
+
+
+def _views_merged(name, function) -> list[Finding]:
+    """``cv2.calibrateCamera([np.concatenate(object_points)], [np.concatenate(image_points)], ...)``: a list of one
+    view made of every view's points; OpenCV fits one pose per view, and no pose puts the board's points, the same
+    for every view, on corners seen from different places."""
+    def merged(node):
+        return isinstance(node, ast.List) and len(node.elts) == 1 and isinstance(node.elts[0], ast.Call) \
+            and _call_name(node.elts[0]) in _JOINS
+
+    made = _assigned_names(function)
+    for n in _nodes(function):
+        if not (isinstance(n, ast.Call) and _call_name(n) in _CALIBRATIONS):
+            continue
+        for argument in n.args[:2]:
+            value = argument if merged(argument) else None
+            if value is None and isinstance(argument, ast.Name):
+                value = next((v for v in made.get(argument.id, ()) if merged(v)), None)
+            if value is not None:
+                return [Finding(name, _line(value), "every view given to the calibration as one view",
+                                f"{name} gives cv2.{_call_name(n)} `{ast.unparse(value)[:60]}` (line {_line(value)}): "
+                                f"one view made of every view's points. OpenCV fits one pose per view, and no single "
+                                f"pose puts the board's points, the same in every view, on corners seen from "
+                                f"different places; give it the lists of per-view arrays as they are", certain=True)]
     return []
 
 

@@ -3529,6 +3529,8 @@ def _student_changes(node, parent, parents, words):
     if isinstance(node, (ast.Tuple, ast.List)):
         yield from _item_swaps(node, parent)
     yield from _measure_changes(node)
+    if isinstance(parent, ast.Assign) and parent.value is node and _sum_of_squares(node):
+        yield "measure", "sqrt", ""   # `r = x ** 2 + y ** 2` where the radius, its root, belongs
     if isinstance(node, ast.Slice):
         # (in a write, one entry where a slice runs on is the slice item's change, `M[0, 1] = s`: not told twice)
         subscript = parent if isinstance(parent, ast.Subscript) else parents.get(id(parent), (None,))[0]
@@ -4878,6 +4880,16 @@ def _denormalisations(fn):
                     for undone in (f"(np.linalg.inv({a}) @ {estimate.id})", f"({a}.T @ {estimate.id})",
                                    f"({estimate.id} @ {a})"):
                         yield estimate, undone
+
+
+def _sum_of_squares(node) -> bool:
+    """``a ** 2 + b ** 2`` (or ``a * a + b * b``, of two or more terms): the square of a length."""
+    def square(term) -> bool:
+        return (isinstance(term, ast.BinOp) and isinstance(term.op, ast.Pow) and isinstance(term.right, ast.Constant)
+                and term.right.value == 2) or (isinstance(term, ast.BinOp) and isinstance(term.op, ast.Mult)
+                                               and ast.dump(term.left) == ast.dump(term.right))
+    return isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add) and square(node.right) \
+        and (square(node.left) or _sum_of_squares(node.left))
 
 
 def _missing_measure(node):
