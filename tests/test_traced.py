@@ -711,3 +711,21 @@ def test_an_in_place_operation_on_an_integer_array_names_where_the_array_was_mad
     floats = raised_sentence(source.replace("offset -= R @ centre", "offset -= R @ centre + 'x'"), "rotated", 0.5,
                              (10.0, 20.0))
     assert floats is None or "in-place" not in floats   # (another error on the line: no dtype told)
+
+
+def test_a_mask_of_another_length_is_told_the_arrays_as_long_as_it():
+    """`matched1[front]` where `front` was made for the inliers (the blind set 1205g's 11/06): the arrays of the
+    mask's length and the indexed array's other axes are told; none where no array has them."""
+    source = """
+        def keep(matched1, inliers):
+            in1 = matched1[inliers]
+            front = in1[:, 0] > 0
+            return matched1[front]
+        """
+    matched = np.arange(12.0).reshape(6, 2) - 3
+    sentence = raised_sentence(source, "keep", matched, np.array([True, True, False, True, False, True]))
+    assert "`matched1` has shape (6, 2) and the mask `front` (4,); `in1` is of shape (4, 2), as long as the mask" \
+        in sentence, sentence
+    alone = raised_sentence(source.replace("front = in1[:, 0] > 0", "front = matched1[:4, 0] > 0"), "keep", matched,
+                            np.array([True, True, False, True, False, True]))
+    assert "as long as the mask" not in alone, alone

@@ -113,6 +113,7 @@ def without_where_to_look(sentence: str) -> str:
     for text in LOOK_FOR:
         if text in sentence:
             sentence = " ".join(sentence.replace(text, " ").split())
+            sentence = re.sub(r" ([.,;:])", r"\1", sentence)   # (the advice taken from before a full stop)
     return sentence
 
 

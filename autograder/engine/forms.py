@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..sandbox import beginner
-from .claims import divides_by, guard, measured
+from .claims import divides_by, guard, guessed, measured
 from .hints import Predicate, expr, keyword, mentions
 
 
@@ -106,6 +106,10 @@ def _size(shape) -> str:
     return "x".join(str(n) for n in shape)
 
 
+# (inferred from the lengths alone: a change of the code confirmed to mend it says where, and takes its place)
+EVERY_PAIR = guessed("a result for every pair of items that go in step")
+
+
 def shape_form(got: tuple, expected: tuple) -> Form | None:
     """The form a result of shape ``got`` has where ``expected`` is asked (``None`` entries
     of ``expected`` match any length), when a rule recognises it."""
@@ -141,12 +145,13 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
     if channels is not None:
         return channels
     # (two axes at least: a flat 9 where 3 are asked may as well be a 3 x 3 matrix flattened)
-    if len(got) == len(expected) >= 2 and expected[0] is not None and expected[0] > 1 \
+    # (n > 2: of two items, 4 = 2 x 2 is also 2 + 2, the items of two inputs stacked)
+    if len(got) == len(expected) >= 2 and expected[0] is not None and expected[0] > 2 \
             and got[0] == expected[0] ** 2 and _fits(got[1:], expected[1:]):
         n = expected[0]
         return Form(measured(f"it looks like one result for every pair of items of two length-{n} inputs, {got[0]} = "
                              f"{n} x {n} where {n} are asked: loops nested where the two go in step make them (zip(a, b) "
-                             "pairs them item by item)"), "a result for every pair of items that go in step")
+                             "pairs them item by item)"), EVERY_PAIR)
     if len(got) == len(expected) >= 3 and None not in expected and got != expected \
             and sorted(got) == sorted(expected) and len(set(expected)) == len(expected):
         # (each length once: which axis went where is read from the lengths alone)

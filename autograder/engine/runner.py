@@ -593,6 +593,10 @@ def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: T
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
     finding = findings[0]
+    if finding.certain:   # (the usual places a check advises looking at give way to the place read)
+        from .claims import without_where_to_look
+
+        first = without_where_to_look(first)
     # "module.py, line N": a notebook's cell and line replace it (_point_into_notebooks)
     where = finding.sentence.replace(f"(line {finding.line})",
                                      f"({check.exercise.lab.module}.py, line {finding.line})", 1)

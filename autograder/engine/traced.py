@@ -707,6 +707,16 @@ def _mask_index_named(recording, expressions, fn, line: int, where) -> Form | No
                             f"{_quote(part.upper)} is {int(stop)} on an axis of {whole[axis]}" + measured(
                                 ": a slice stops at the axis' end, so the window is cut short; clip the window to "
                                 "the image, and the mask with it"), WINDOW_CUT)
+        # (the arrays of the function as long as the mask is, which it was likely made for: `in1[front]` where
+        # `matched1[front]` indexes the matches from before RANSAC kept its inliers)
+        fitting = list(dict.fromkeys(
+            n.id for n in sorted((n for n in ast.walk(fn) if isinstance(n, ast.Name)), key=lambda n: (n.lineno, n.col_offset))
+            if n.id not in (getattr(node.value, "id", None), getattr(node.slice, "id", None))
+            and (recording.shape(n) or (None,))[0] == mask[0] and tuple(recording.shape(n)[1:]) == tuple(shape[1:])))[:3]
+        if fitting:
+            names = ", ".join(f"`{name}`" for name in fitting[:-1]) + (" and " if len(fitting) > 1 else "") + f"`{fitting[-1]}`"
+            said += measured(f"; {names} {'is' if len(fitting) == 1 else 'are'} of shape "
+                             f"{_shape_text((mask[0],) + tuple(shape[1:]))}, as long as the mask")
         return Form(said, MISTAKE)
     return None
 

@@ -33,7 +33,7 @@ from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_difference, describe_difference,
                        fill_fraction, format_apart, format_arrays_apart, magnitude, max_abs_error, nearest_variants)
 from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard, guessed, look_at, measured,
-                             passes_parameters, takes_last_row_of_vt, wherever_written)
+                             passes_parameters, takes_last_row_of_vt, where_to_look, wherever_written)
 from ..engine.forms import shape_form
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
                             keyword, mentions,
@@ -1582,9 +1582,12 @@ def _zero_missed(got, scene, far) -> str:
     got = np.asarray(got, float)
     finite = got[np.isfinite(got)]
     wall = got[far]
-    if finite.size and finite.min() >= 0 and finite.max() <= scene.max_disparity + 0.5 \
+    # (and a map of more than one value: one disparity everywhere -- every cost NaN, argmin's first -- is no
+    # search short of 0)
+    if finite.size and finite.min() >= 0 and finite.max() <= scene.max_disparity + 0.5 and np.ptp(finite) > 0 \
             and not np.any(np.abs(wall[np.isfinite(wall)]) < 0.5):
-        return measured(": none of the wall's disparities is 0 -- the search must include d = 0 (d = 0..max_disparity)")
+        return measured(": none of the wall's disparities is 0") + where_to_look(
+            " -- the search must include d = 0 (d = 0..max_disparity)")
     return ""
 
 
@@ -3025,7 +3028,10 @@ def name_bits_not_isolated(t: Trial, what: str, got, width: int, n_bits: int):
     shifts = np.arange(n_bits - 1, -1, -1)[:, None]
     shifted = g[None, :] >> shifts
     shown = ", ".join(str(int(v)) for v in values[:6]) + (", ..." if len(values) > 6 else "")
-    if np.array_equal(got.astype(np.int64), shifted & 255) or np.array_equal(got.astype(np.int64), shifted % 256):
+    # (only where the higher bits show: with one bit, or a few stripes, g >> s is the bit itself -- the bit
+    # isolated and left unscaled answers alike)
+    if (shifted & 255 != shifted & 1).any() and (np.array_equal(got.astype(np.int64), shifted & 255)
+                                                 or np.array_equal(got.astype(np.int64), shifted % 256)):
         t.fail(measured(f"{what}: the patterns hold the values {shown}, not only 0 and 255: row i is (g >> s) & 255, "
                         "the Gray code g shifted with its higher bits kept, where it must be the single bit "
                         "((g >> s) & 1) * 255. Mind that * binds tighter than &: `x & 1 * 255` is `x & 255`."),

@@ -315,8 +315,9 @@ def _call_name(call: ast.Call) -> str:
 
 
 def _called_names(function) -> set[str]:
-    return {node.func.id for node in _nodes(function)
-            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name)}
+    """The names ``function`` reads: those it calls, and those it passes or picks to call later
+    (``(_ssd_volume if cost == "ssd" else _ncc_volume)(...)``, ``map(_helper, ...)``)."""
+    return {node.id for node in _nodes(function) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
 
 
 def _names_in(node) -> set[str]:
