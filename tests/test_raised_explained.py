@@ -480,3 +480,49 @@ def test_a_write_into_a_read_only_view_or_into_the_callers_array_is_named():
     form = explained(read_code(textwrap.dedent(given)), traceback_at(3), message, "f", (np.ones((4, 2)), 2.0), {})
     assert form.mistake == INPUT_WRITTEN and "`points` (line 3)" in form.sentence
     assert explained(read_code(textwrap.dedent(own)), traceback_at(4), message, "f", (np.ones(3), 2.0), {}) is None
+
+
+def test_a_name_assigned_under_a_test_and_read_first_is_told_local():
+    """`_rng` assigned only where a seed is given, and read on every call (the blind set 1205g's 09/03): Python
+    takes it as the function's own name; the assignment and its test are told."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        _rng = np.random.default_rng()
+
+        def f(n, seed=None):
+            if seed is not None:
+                _rng = np.random.default_rng(seed)
+            return _rng.random(n)
+        """)
+    message = "cannot access local variable '_rng' where it is not associated with a value"
+    traceback = f'Traceback (your code):\n  File "lab.py", line 9, in f\n    ...\nUnboundLocalError: {message}'
+    form = explained(read_code(source), traceback, message, "f", (3,), {})
+    assert form is not None and "assigns `_rng` (line 8, under `seed is not None`)" in form.sentence, form
+    old = "local variable '_rng' referenced before assignment"
+    assert explained(read_code(source), traceback.replace(message, old), old, "f", (3,), {}) is not None
+
+
+def test_a_list_of_none_beside_pairs_made_an_array_is_told_its_appends():
+    """`projected.append(None)` for a point behind the camera beside `(x, y)` for the others, then np.array (the
+    blind set 1205g's 10/01): the two appends are told; a list of pairs only is not."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def f(points):
+            projected = []
+            for X, Y, Z in points:
+                if Z <= 0:
+                    projected.append(None)
+                else:
+                    projected.append((X / Z, Y / Z))
+            return np.array(projected, dtype=np.float64)
+        """)
+    message = ("setting an array element with a sequence. The requested array has an inhomogeneous shape after 1 "
+               "dimensions. The detected shape was (3,) + inhomogeneous part.")
+    traceback = f'Traceback (your code):\n  File "lab.py", line 11, in f\n    ...\nValueError: {message}'
+    points = np.array([[1.0, 2.0, 3.0], [1.0, 1.0, -1.0], [2.0, 2.0, 2.0]])
+    form = explained(read_code(source), traceback, message, "f", (points,), {})
+    assert form is not None and "appends None to `projected` (line 8) and a sequence of 2 (line 10)" in form.sentence, form
+    alone = source.replace("projected.append(None)", "projected.append((np.nan, np.nan))")
+    assert explained(read_code(alone), traceback, message, "f", (points,), {}) is None

@@ -154,6 +154,11 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     found = _NOT_ITERABLE.search(message)
     if found and _single_unpacked(fn, line, given, found.group(1)) is not None:
         return _single_unpacked(fn, line, given, found.group(1))
+    if _INHOMOGENEOUS.search(message):
+        return _mixed_items(fn, line)
+    found = _UNBOUND.search(message)
+    if found:
+        return _local_read_first(fn, line, found.group(1) or found.group(2))
     if "NoneType" in message:
         return _none_returned(code, fn, line)
     if "OpenCV(" in message:
@@ -273,6 +278,65 @@ def _singular_solved(fn, line: int) -> Form | None:
                              "point at infinity) cannot be; the null vector by SVD (the last row of Vt) covers "
                              "every case"), SINGULAR_MISTAKE)
     return None
+
+
+_INHOMOGENEOUS = re.compile(r"inhomogeneous shape|setting an array element with a sequence")
+MIXED_ITEMS = "a list of items of different forms made an array (None, or a number, beside pairs)"
+
+
+def _item_form(node) -> str | None:
+    """What an appended item is, where its code says: "None", "a number" or "a sequence of n"."""
+    if isinstance(node, ast.Constant):
+        return "None" if node.value is None else "a number" if isinstance(node.value, (int, float)) else None
+    if isinstance(node, (ast.Tuple, ast.List)) and not any(isinstance(e, ast.Starred) for e in node.elts):
+        return f"a sequence of {len(node.elts)}"
+    return None
+
+
+def _mixed_items(fn, line: int) -> Form | None:
+    """``np.array(rows)`` on the raising line, where ``rows`` is a list the function appends items of different
+    forms to (``None`` for a point behind the camera, ``(x, y)`` for the others): no array holds both."""
+    lists = {node.args[0].id for node in _own_nodes(fn) if isinstance(node, ast.Call)
+             and node.lineno <= line <= getattr(node, "end_lineno", node.lineno)
+             and isinstance(node.func, ast.Attribute) and node.func.attr in ("array", "asarray", "stack", "vstack")
+             and node.args and isinstance(node.args[0], ast.Name)}
+    for name in sorted(lists):
+        forms = {}
+        for node in _own_nodes(fn):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "append" \
+                    and isinstance(node.func.value, ast.Name) and node.func.value.id == name and len(node.args) == 1:
+                form = _item_form(node.args[0])
+                if form is not None:
+                    forms.setdefault(form, node.lineno)
+        if len(forms) >= 2:
+            (first, at), (second, then) = sorted(forms.items(), key=lambda item: item[1])[:2]
+            return Form(measured(f"your `{fn.name}` appends {first} to `{name}` (line {at}) and {second} (line {then}): "
+                                 f"NumPy cannot make one array of items of different forms; append the same form for "
+                                 f"every item (NaN entries, `(np.nan, np.nan)`, where there is no value)"), MIXED_ITEMS)
+    return None
+
+
+_UNBOUND = re.compile(r"cannot access local variable '(\w+)'|local variable '(\w+)' referenced before assignment")
+UNBOUND = "a name read before the function assigns it (assigned in the function, it is local everywhere in it)"
+
+
+def _local_read_first(fn, line: int, name: str) -> Form | None:
+    """``name`` read on the raising line before any assignment of it in ``fn`` ran: assigned somewhere in the
+    function (under a test, a loop, later), so Python takes it as the function's own name everywhere in it --
+    the module's name of that name is not read there."""
+    stores = sorted((n for n in _own_nodes(fn) if isinstance(n, ast.Name) and n.id == name
+                     and isinstance(n.ctx, ast.Store)), key=lambda n: n.lineno)
+    if not stores:
+        return None
+    first = stores[0]
+    guard = next((node for node in _own_nodes(fn) if isinstance(node, (ast.If, ast.For, ast.While, ast.Try))
+                  and node.lineno < first.lineno <= getattr(node, "end_lineno", node.lineno)), None)
+    under = f", under `{ast.unparse(guard.test) if isinstance(guard, (ast.If, ast.While)) else type(guard).__name__.lower()}`" \
+        if guard is not None and not isinstance(guard, ast.Try) else ""
+    return Form(measured(f"your `{fn.name}` assigns `{name}` (line {first.lineno}{under}), so Python takes `{name}` "
+                         f"as the function's own name everywhere in it -- a module-level `{name}` is not read there -- "
+                         f"and on this call no assignment of it had run when line {line} read it: assign it on every "
+                         f"path before it is read (or give the module's one another name)"), UNBOUND)
 
 
 _ZERO_DIVISION = re.compile(r"(?:division|modulo) by zero")

@@ -465,7 +465,7 @@ def _named_by_exception(verdict: Verdict, trial: Trial, traceback_text: str) -> 
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
     if " raised " in first:
-        said = f"{first.rstrip()}: {form.sentence}."
+        said = f"{first.rstrip().rstrip('.')}: {form.sentence}."   # (an error's own full stop before the colon dropped)
     else:   # the worker's sentence on the OpenCV call leads: this one follows it
         said = f"{first.rstrip().rstrip('.')}. {form.sentence[:1].upper()}{form.sentence[1:]}."
     return replace(verdict, message=f"{said}{newline}{rest}", mistake=form.mistake)

@@ -282,7 +282,8 @@ NEGATIVE_SCALE = "the warp depends on H's sign (-H is the same homography)"
 SMALL_SCALE = "the warp depends on H's size (0.001 H is the same homography)"
 
 
-@ex1.check("apply_homography with -H and with 0.001 H: a homography is defined up to scale, sign included", points=1)
+@ex1.check("apply_homography with -H, 0.001 H and an affine H at scale 2.5: a homography is defined up to scale, sign "
+           "included", points=1)
 def apply_homography_negative_scale(t):
     source = photo("astronaut", (240, 180))
     H = truth.corner_homography(np.random.default_rng(5), (240, 180), 0.15)
@@ -320,7 +321,26 @@ def apply_homography_negative_scale(t):
         judge_homography_warp(t, what, got, source, H)
     except Fail as failure:
         t.fail(f"{failure.message} " + measured(same), mistake=SMALL_SCALE)
+    # (and an affine H, its last row (0, 0, s): right at s = 1 and not at 2.5 -- a shortcut for affine maps that
+    # hands H's top rows to cv2.warpAffine without dividing by H[2, 2]; the blind set 1205g's 08/01)
+    affine = np.array([[0.9, -0.15, 20.0], [0.1, 1.05, -10.0], [0.0, 0.0, 1.0]])
+    try:
+        judge_homography_warp(t, "apply_homography(image, A)", t.call("apply_homography", source, affine), source,
+                              affine, show=False)
+    except Fail:
+        return verdict   # (wrong for an affine H at scale 1 too: another mistake, the other checks' to say)
+    what = "apply_homography(image, 2.5 * A) of an affine A (last row (0, 0, 2.5))"
+    try:
+        judge_homography_warp(t, what, t.call("apply_homography", source, 2.5 * affine), source, affine)
+    except Fail as failure:
+        t.fail(f"{failure.message} " + measured(
+            "Your apply_homography is right for the affine A and not for 2.5 A, the same map: an affine H's last "
+            "row is (0, 0, s) with any s != 0, and its top rows are the affine map only once divided by H[2, 2]."),
+            mistake=AFFINE_SCALE)
     return verdict
+
+
+AFFINE_SCALE = "an affine H's top rows used without dividing by H[2, 2]"
 
 
 # ================================================================== ex2 DLT

@@ -1151,7 +1151,7 @@ SEED_HINT = Hint(
         none_left="") + ".")
 
 
-@ex4.check("simulate_aperture is reproducible with a seed", points=1)
+@ex4.check("simulate_aperture is reproducible with a seed, and draws without one", points=1)
 def aperture_seed(t):
     X = truth.points_in_front(45, n=4)
     a, what = _aperture_call(t, X, 0.3, 50, 123)
@@ -1170,6 +1170,14 @@ def aperture_seed(t):
         t.fail(f"{what} gave different rays on a second call with the same seed 0: " + measured(
                "seed=0 is taken for no seed (0 is a seed like any other; `if seed is None` tells no seed apart, "
                "`if seed` does not)"), mistake="seed=0 taken for no seed")
+    # (and with no seed, the API's default: fresh rays, in the same blur discs -- a generator made only where a
+    # seed is given leaves the default with none; the blind set 1205g's 09/03)
+    what = "simulate_aperture(points, f=200, aperture=0.3, n_rays=50) with the default seed=None"
+    unseeded = t.expect_array(t.call("simulate_aperture", X, APERTURE_F, 0.3, n_rays=50), what,
+                              shape=(len(X), 50, 2), kind="f", finite=True)
+    apart = np.hypot(*np.moveaxis(unseeded - truth.pinhole(X, APERTURE_F)[:, None, :], -1, 0))
+    if (apart > 1.02 * truth.blur_radius(X, APERTURE_F, 0.3)[:, None] + 1e-9).any():
+        t.fail(f"{what}: some rays fall outside their point's blur disc, where the same call with a seed keeps them in")
 
 
 # The API asks for "random points of a circular pinhole", not points uniform over its area: a

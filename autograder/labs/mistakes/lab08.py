@@ -569,6 +569,14 @@ MISTAKES = {
         "rows, cols = min(height, moving.shape[0]), min(width, moving.shape[1])\n"
         "canvas[:rows, :cols] = moving[:rows, :cols]\n"
         "return apply_homography(canvas, H, (width, height))"), ["`apply_homography(moving, H, (width, height))`"]),
+    # the blind set 1205g's 08/01: an affine H's top rows handed to cv2.warpAffine without dividing by H[2, 2]
+    "apply_homography warping an affine H by its top rows, H[2, 2] left out": ("lab08.ex1", reference_def_with(
+        "lab08_homographies", "apply_homography", "height, width = image.shape[:2]",
+        "height, width = image.shape[:2]\n"
+        "H = np.asarray(H, dtype=np.float64)\n"
+        "if H[2, 0] == 0 and H[2, 1] == 0:\n"
+        "    return cv2.warpAffine(image, H[:2], dsize or (width, height), flags=cv2.INTER_LINEAR)"),
+        ["and not for 2.5 A, the same map"]),
     # the blind set 1205g's 08/03: a degeneracy test of one rank (`!= 8`) where a bound belongs, refusing every
     # noisy system (rank 9); its negation, which refuses the exact pairs the code fitted, is no repair
     "homography_dlt refusing every system whose rank is not exactly 8": ("lab08.ex2", reference_def_with(
