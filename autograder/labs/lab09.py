@@ -24,7 +24,7 @@ from ..engine import judges
 from ..engine import defaults_given
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (THIRD_COORDINATE, checklist, divides_by, evidenced, from_code, guard, guessed, look_at,
-                             measured)
+                             measured, where_to_look)
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
 from ..engine.hints import (Hint, Predicate, _resolved, _scope, call_in_a_loop, calls, code_of, expr, keyword, matmul_of, mentions,
                             nan_behind)
@@ -2052,7 +2052,10 @@ def calibration_result(t: Trial, images, pattern, square=truth.CALIBRATION_SQUAR
     return what, K, dist, float(np.asarray(rms).ravel()[0])
 
 
-NOT_CORRESPONDING = guessed("the object points do not correspond to the corners")
+# (where the code builds the object points row by row, the cause is not read from the error: the usual places)
+NOT_FITTING = where_to_look(
+    " Look at how each view's corners are found and refined (on that view's own image?) and paired with the "
+    "board's points (the same view, the same order?).")
 
 
 def judge_calibration(t: Trial, images, K_true, pattern, square=truth.CALIBRATION_SQUARE):
@@ -2073,14 +2076,15 @@ def judge_calibration(t: Trial, images, K_true, pattern, square=truth.CALIBRATIO
         # (and the order is a guess: a change of the code confirmed to mend it -- a coordinate left unscaled
         # in a loop building them row by row -- takes its place, and the recipe's hint with it)
         ordered = OBJECT_POINTS_ROW_BY_ROW.found(code_of(t).reachable(["calibrate"]))
-        # (both causes are inferred from the error alone: a slip read in the code -- every view merged into one --
-        # takes their place)
+        # (the order is inferred from the error alone, and where the points are built row by row no cause is: a
+        # slip read in the code -- every view merged into one -- or a change confirmed takes their place)
         t.fail(f"{what}: the reprojection error is {rms:.2f} px (a good calibration on these clean "
                "views has < 0.1 px)"
-               + (f": it looks like {NOT_CORRESPONDING} detected." if ordered else ": the object points do not "
+               + (": no camera puts the object points on the corners as they are paired." + NOT_FITTING
+                  if ordered else ": the object points do not "
                   f"correspond to the detected corners: it looks like {OBJECT_POINTS_ORDER} (column by column, say, "
                   "or for another pattern_size)."),
-               hint=OBJECT_POINTS_HINT.said(t), mistake=NOT_CORRESPONDING if ordered else OBJECT_POINTS_ORDER)
+               hint="" if ordered else OBJECT_POINTS_HINT.said(t), mistake="" if ordered else OBJECT_POINTS_ORDER)
     if np.abs(K[:2, 2] - K_true[1::-1, 2]).max() < 3.0 and c_error.max() > 3.0:
         t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
                "(rows, cols)? OpenCV wants (width, height).", mistake="the principal point is swapped")

@@ -353,7 +353,7 @@ MISTAKES = {
                 image_points.append(corners)
             rms, K, dist, _, _ = cv2.calibrateCamera(object_points, image_points, (width, height), None, None)
             return K, dist.ravel()[:5], float(rms)
-        """, ["the object points do not correspond to the corners detected"]),
+        """, ["to `cv2.cornerSubPix(gray, corners"]),
     "calibrate finding corners on views shrunk to a third": ("lab09.ext1", """
         _calibrate_right = calibrate
         def calibrate(images, pattern_size, square_size):
