@@ -1458,6 +1458,13 @@ def _running_best_overwritten(name, function) -> list[Finding]:
 
 
 # ------------------------------------------------------------------ an alias changed in place
+def _made_as_arrays(made: dict) -> set[str]:
+    """Of :func:`_assigned_names`' names, those every assignment makes an array or list (a call, a subscript, a
+    list): an int's `j += 1` binds anew, it changes nothing shared."""
+    return {target for target, values in made.items()
+            if values and all(isinstance(v, (ast.Call, ast.Subscript, ast.List, ast.ListComp)) for v in values)}
+
+
 def _alias_changed(name, function) -> list[Finding]:
     """``b = a`` (another name for the same array, no copy), then ``b *= f`` or ``b[...] = v`` in place, in a
     loop or with ``a`` read afterwards: ``a`` changes with it."""
@@ -1475,9 +1482,7 @@ def _alias_changed(name, function) -> list[Finding]:
                 if isinstance(n, ast.Name)}
     made = _assigned_names(function)
     # (and lists: `row_x = [x, y, 1, 0, 0, 0]` is as shared by `row_y = row_x`)
-    arrays = {target for target, values in made.items()
-              if values and all(isinstance(v, (ast.Call, ast.Subscript, ast.List, ast.ListComp)) for v in values)} \
-        - counters
+    arrays = _made_as_arrays(made) - counters
     lists = {target for target in arrays if all(isinstance(v, (ast.List, ast.ListComp)) for v in made[target])}
     statements = _statements_in_order(function)
     aliases = {}   # alias -> (original, line bound, bound in a loop)
@@ -1540,9 +1545,7 @@ def _kept_alias_rewritten(name, function) -> list[Finding]:
     """In a loop, ``best = mask`` (another name for the array, no copy) where the loop writes ``mask`` in place
     at every turn (``np.less(err, t, out=mask)``, ``mask[:] = ...``) and ``mask`` is made once, outside it: the
     value kept is that same array, so after the loop it holds the last turn's values, not those kept."""
-    made = _assigned_names(function)
-    arrays = {target for target, values in made.items()
-              if values and all(isinstance(v, (ast.Call, ast.Subscript, ast.List, ast.ListComp)) for v in values)}
+    arrays = _made_as_arrays(_assigned_names(function))
     read_at: dict = {}
     for n in _nodes(function):
         if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load):
