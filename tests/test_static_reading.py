@@ -574,7 +574,7 @@ def test_the_references_hold_none_of_these_findings():
            "the result rounded to a few decimals", "a value kept in a loop is the array the loop rewrites",
            "one array given two names by a chained assignment", "a lambda made in a loop reads the loop's variable when called",
            "rows of np.empty left unwritten where a loop continues", "infinity written into an array before it is filtered",
-           "every view given to the calibration as one view"}
+           "every view given to the calibration as one view", "a whole row's norm where the block's row's belongs"}
     for path in sorted((ROOT / "reference_solutions").glob("lab*.py")):
         assert not one(path.read_text()) & new, path.name
 
@@ -1633,3 +1633,33 @@ def test_every_view_given_to_the_calibration_as_one_is_read():
     assert one(source.format(merge="object_points = [np.concatenate(object_points)]")) \
         == {"every view given to the calibration as one view"}
     assert not one(source.format(merge="object_points = [np.asarray(p, np.float32) for p in object_points]"))
+
+
+def test_a_whole_rows_norm_where_its_blocks_belongs_is_read():
+    """`P / np.linalg.norm(P[2])` where the code decomposes the block `P[:, :3]` (the blind set 1205g's 10/04):
+    the row's last column counts too. The block's row, or a matrix with no block taken, is not read."""
+    source = """
+        import numpy as np
+
+        def decompose(P):
+            P = P / np.linalg.norm({row})
+            M = P[:, :3]
+            return np.linalg.qr(np.linalg.inv(M))
+        """
+    assert one(source.format(row="P[2]")) == {"a whole row's norm where the block's row's belongs"}
+    assert not one(source.format(row="P[2, :3]"))
+    assert not one(source.format(row="P[2]").replace("P[:, :3]", "P"))
+
+
+def test_a_reader_that_fails_costs_no_other_findings(monkeypatch):
+    """One reader raising on code nobody foresaw leaves the others' findings."""
+    from autograder.loading import reading
+
+    def broken(name, function):
+        raise AttributeError("a reader's own slip")
+
+    monkeypatch.setattr(reading, "_eig_unsorted", broken)
+    assert one("""
+        def shear_matrix(s):
+            return np.eye(3) + s * np.eye(3, k=1)
+        """) == {"np.eye(n, k) fills its whole off-diagonal"}

@@ -24,7 +24,7 @@ from ..engine import strategies as st
 from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (calls_any, checklist, divides_by, evidenced, from_code, guard, look_at, measured,
                              negates_on_negative_det,
-                             passes_argument, reshapes, takes_last_column_of_vt, takes_last_row_of_vt)
+                             passes_argument, reshapes, takes_last_column_of_vt, takes_last_row_of_vt, where_to_look)
 from ..engine.compare import (at_precision, blurred_difference, closest, fill_fraction, format_apart, format_arrays_apart,
                        magnitude, projective_distance)
 from ..engine.forms import scale_form
@@ -670,7 +670,10 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
                  if abs(K[i, j]) > at_precision(1e-6 * np.abs(K).max(), K_scale)]
         problems.append("K is not upper triangular" + measured(f" ({', '.join(below)})") + RQ_HINT.said(t))
     if abs(K[2, 2] - 1) > at_precision(1e-6):
-        problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: K is not normalised; " + NORMALISE_K_HINT.said(t))
+        # (the recipe's step is where to look where nothing better is known: a slip read in the code -- P scaled
+        # by its whole row's norm -- says where)
+        problems.append(f"K[2, 2] is {K[2, 2]:.4g}, not 1: K is not normalised"
+                        + where_to_look("; " + NORMALISE_K_HINT.said(t)))
         labels.append("K is not normalised (K[2, 2] != 1)")
     rotation = np.abs(R @ R.T - np.eye(3)).max() <= at_precision(1e-6)
     unsigned = np.any(np.diag(K) <= 0)

@@ -212,72 +212,82 @@ def _transposed_into_rows(name, function, functions, rows) -> list[Finding]:
 
 
 # ------------------------------------------------------------------ one function
+def _safely(reader, *args) -> list[Finding]:
+    """``reader(*args)``, or nothing where it fails on code nobody foresaw: one reader's slip must not cost the
+    module every other reader's findings."""
+    try:
+        return reader(*args)
+    except (ValueError, TypeError, AttributeError, IndexError, KeyError, StopIteration):
+        return []
+
+
 def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset()) -> list[Finding]:
     name = function.name
     parameters = {a.arg for a in function.args.args + function.args.kwonlyargs + function.args.posonlyargs}
     images = parameters if api else set()
     found: list[Finding] = []
-    found += _eig_unsorted(name, function)
-    found += _integer_arrays(name, function)
-    found += _floor_division(name, function)
-    found += _uint8_arithmetic(name, function, images)
-    found += _homogeneous_zero(name, function)
-    found += _query_train(name, function)
-    found += _mask_as_index(name, function)
-    found += _distortion_order(name, function, parameters)
-    found += _camera_left_out(name, function)
-    found += _view_overwritten(name, function)
-    found += _seeded_in_a_loop(name, function)
-    found += _data_shuffled_in_a_loop(name, function)
-    found += _mean_after_centring(name, function)
-    found += _w_never_divided(name, function)
-    found += _diagonal_refilled(name, function)
-    found += _constant_out_of_place(name, function)
-    found += _last_turn_used(name, function)
-    found += _third_operand_as_out(name, function)
-    found += _twin_lopsided(name, function)
-    found += _alias_changed(name, function)
-    found += _kept_alias_rewritten(name, function)
-    found += _chained_one_array(name, function)
-    found += _late_bound_lambda(name, function)
-    found += _empty_rows_skipped(name, function)
-    found += _views_merged(name, function)
-    found += _same_array_appended(name, function)
-    found += _running_best_overwritten(name, function)
-    found += _rolled_strip_one_sign(name, function)
-    found += _scaled_in_place_per_turn(name, function)
-    found += _written_into_a_copy(name, function)
-    found += _pose_never_chosen(name, function)
-    found += _distortion_in_pixels(name, function)
-    found += _loop_variable_rebinds(name, function)
-    found += _loop_variable_assigned_in_vain(name, function)
-    found += _fisheye_model(name, function)
-    found += _identity_with_a_literal(name, function)
-    found += _rotation_matrix_made_a_vector(name, function)
-    found += _value_of_an_earlier_loop(name, function)
-    found += _running_halves(name, function)
-    found += _norm_of_every_pair_at_once(name, function)
-    found += _whole_norm_divides_vectors(name, function)
-    found += _homogeneous_one_scaled(name, function)
-    found += _determinant_compared_exactly(name, function)
-    found += _flags_joined_with_or(name, function)
-    found += _singular_vectors_unused(name, function)
-    found += _zeros_solved_for(name, function)
-    found += _fundamental_as_essential(name, function)
-    found += _eigenvectors_as_rows(name, function)
-    found += _sign_lost_by_a_root(name, function)
-    found += _dimension_tested_after_reshaping(name, function)
-    found += _outliers_kept(name, function)
-    found += _root_by_a_fraction(name, function)
-    found += _grid_unpacked_as_x_y(name, function)
-    found += _result_rounded(name, function)
-    found += _where_tuple_counted(name, function)
-    found += _null_vector_by_argmin(name, function)
-    found += _rows_repeated(name, function)
-    found += _reciprocal_as_inverse(name, function)
-    found += _comparison_through_bitwise(name, function)
-    found += _iterator_read_twice(name, function)
-    found += _state_kept_between_calls(name, function, lists)
+    found += _safely(_eig_unsorted, name, function)
+    found += _safely(_integer_arrays, name, function)
+    found += _safely(_floor_division, name, function)
+    found += _safely(_uint8_arithmetic, name, function, images)
+    found += _safely(_homogeneous_zero, name, function)
+    found += _safely(_query_train, name, function)
+    found += _safely(_mask_as_index, name, function)
+    found += _safely(_distortion_order, name, function, parameters)
+    found += _safely(_camera_left_out, name, function)
+    found += _safely(_view_overwritten, name, function)
+    found += _safely(_seeded_in_a_loop, name, function)
+    found += _safely(_data_shuffled_in_a_loop, name, function)
+    found += _safely(_mean_after_centring, name, function)
+    found += _safely(_w_never_divided, name, function)
+    found += _safely(_diagonal_refilled, name, function)
+    found += _safely(_constant_out_of_place, name, function)
+    found += _safely(_last_turn_used, name, function)
+    found += _safely(_third_operand_as_out, name, function)
+    found += _safely(_twin_lopsided, name, function)
+    found += _safely(_alias_changed, name, function)
+    found += _safely(_kept_alias_rewritten, name, function)
+    found += _safely(_chained_one_array, name, function)
+    found += _safely(_late_bound_lambda, name, function)
+    found += _safely(_empty_rows_skipped, name, function)
+    found += _safely(_views_merged, name, function)
+    found += _safely(_row_norm_of_whole_matrix, name, function)
+    found += _safely(_same_array_appended, name, function)
+    found += _safely(_running_best_overwritten, name, function)
+    found += _safely(_rolled_strip_one_sign, name, function)
+    found += _safely(_scaled_in_place_per_turn, name, function)
+    found += _safely(_written_into_a_copy, name, function)
+    found += _safely(_pose_never_chosen, name, function)
+    found += _safely(_distortion_in_pixels, name, function)
+    found += _safely(_loop_variable_rebinds, name, function)
+    found += _safely(_loop_variable_assigned_in_vain, name, function)
+    found += _safely(_fisheye_model, name, function)
+    found += _safely(_identity_with_a_literal, name, function)
+    found += _safely(_rotation_matrix_made_a_vector, name, function)
+    found += _safely(_value_of_an_earlier_loop, name, function)
+    found += _safely(_running_halves, name, function)
+    found += _safely(_norm_of_every_pair_at_once, name, function)
+    found += _safely(_whole_norm_divides_vectors, name, function)
+    found += _safely(_homogeneous_one_scaled, name, function)
+    found += _safely(_determinant_compared_exactly, name, function)
+    found += _safely(_flags_joined_with_or, name, function)
+    found += _safely(_singular_vectors_unused, name, function)
+    found += _safely(_zeros_solved_for, name, function)
+    found += _safely(_fundamental_as_essential, name, function)
+    found += _safely(_eigenvectors_as_rows, name, function)
+    found += _safely(_sign_lost_by_a_root, name, function)
+    found += _safely(_dimension_tested_after_reshaping, name, function)
+    found += _safely(_outliers_kept, name, function)
+    found += _safely(_root_by_a_fraction, name, function)
+    found += _safely(_grid_unpacked_as_x_y, name, function)
+    found += _safely(_result_rounded, name, function)
+    found += _safely(_where_tuple_counted, name, function)
+    found += _safely(_null_vector_by_argmin, name, function)
+    found += _safely(_rows_repeated, name, function)
+    found += _safely(_reciprocal_as_inverse, name, function)
+    found += _safely(_comparison_through_bitwise, name, function)
+    found += _safely(_iterator_read_twice, name, function)
+    found += _safely(_state_kept_between_calls, name, function, lists)
     return found
 
 
@@ -1671,6 +1681,35 @@ def _empty_rows_skipped(name, function) -> list[Finding]:
                                 f"write their row (line {_line(later[0])}): those rows are garbage, not the value the "
                                 f"API asks; make it with np.full(..., np.nan) (or write the row before continuing)",
                                 certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ a whole row's norm where its block's belongs
+def _column_block(node) -> str | None:
+    """``P[:, :3]``, ``P[:3, :3]`` or ``P[:, :-1]``: the name of the matrix whose left block is taken."""
+    if not (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and isinstance(node.slice, ast.Tuple)
+            and len(node.slice.elts) == 2 and isinstance(node.slice.elts[1], ast.Slice)):
+        return None
+    columns = node.slice.elts[1]
+    return node.value.id if columns.lower is None and columns.upper is not None and columns.step is None else None
+
+
+def _row_norm_of_whole_matrix(name, function) -> list[Finding]:
+    """``P / np.linalg.norm(P[2])`` where the code takes P's left block ``P[:, :3]`` as the matrix it decomposes:
+    the whole row's length counts its last column too (P[2, 3], t_z's share), where the block's row's belongs."""
+    blocks = {found for n in _nodes(function) if (found := _column_block(n)) is not None}
+    for n in _nodes(function):
+        if isinstance(n, ast.Call) and _call_name(n) == "norm" and len(n.args) == 1 and not n.keywords \
+                and isinstance(n.args[0], ast.Subscript) and isinstance(n.args[0].value, ast.Name) \
+                and n.args[0].value.id in blocks and isinstance(n.args[0].slice, ast.Constant) \
+                and isinstance(n.args[0].slice.value, int):
+            matrix, row = n.args[0].value.id, n.args[0].slice.value
+            block = next(ast.unparse(b) for b in _nodes(function) if _column_block(b) == matrix)
+            columns = block.split(",", 1)[1].strip(" ]")
+            return [Finding(name, _line(n), "a whole row's norm where the block's row's belongs",
+                            f"{name} scales by `{ast.unparse(n)}` (line {_line(n)}), the length of {matrix}'s whole row "
+                            f"{row}, its last column included, while the matrix it works on is the block `{block}`: that "
+                            f"row's length in the block is `np.linalg.norm({matrix}[{row}, {columns}])`", certain=True)]
     return []
 
 
