@@ -142,8 +142,9 @@ def read_source(text: str, api=frozenset()) -> Reading:
         findings, calls = {}, {}
         rows = {name: _read_as_rows(node) for name, node in functions.items()}
         for name, node in functions.items():
-            findings[name] = _read_function(node, name in api, lists) + _transposed_into_rows(name, node, functions, rows) \
-                + _module_array_changed(name, node, arrays) + _infinity_filtered(name, node, filtering)
+            findings[name] = _read_function(node, name in api, lists) \
+                + _safely(_transposed_into_rows, name, node, functions, rows) \
+                + _safely(_module_array_changed, name, node, arrays) + _safely(_infinity_filtered, name, node, filtering)
             calls[name] = {called for called in _called_names(node) if called in functions and called != name}
         return Reading(findings, calls)
     except TooLarge as exc:
