@@ -1552,6 +1552,16 @@ def _written_in_place(node) -> str | None:
     return None
 
 
+def _first_writes(nodes) -> dict:
+    """name -> the first of ``nodes`` that writes into it in place (:func:`_written_in_place`)."""
+    written: dict = {}
+    for n in nodes:
+        target = _written_in_place(n)
+        if target is not None:
+            written.setdefault(target, n)
+    return written
+
+
 def _kept_alias_rewritten(name, function) -> list[Finding]:
     """In a loop, ``best = mask`` (another name for the array, no copy) where the loop writes ``mask`` in place
     at every turn (``np.less(err, t, out=mask)``, ``mask[:] = ...``) and ``mask`` is made once, outside it: the
@@ -1564,11 +1574,7 @@ def _kept_alias_rewritten(name, function) -> list[Finding]:
     for loop in (node for node in _nodes(function) if isinstance(node, (ast.For, ast.While))):
         nodes = [n for statement in loop.body for n in ast.walk(statement)]
         rebound = {n.id for n in nodes if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
-        written = {}
-        for n in nodes:
-            target = _written_in_place(n)
-            if target is not None:
-                written.setdefault(target, n)
+        written = _first_writes(nodes)
         end = max((_line(n) for n in nodes), default=_line(loop))
         for n in nodes:
             if not (isinstance(n, ast.Assign) and len(n.targets) == 1):
@@ -1596,11 +1602,7 @@ def _chained_one_array(name, function) -> list[Finding]:
     """``xs = ys = np.full(n, np.nan)``: a chained assignment gives one array two names, and each is then
     written into as if it were its own (``xs[i] = ...``, ``ys[i] = ...``): every write lands in both."""
     made = _assigned_names(function)
-    written: dict = {}
-    for n in _nodes(function):
-        target = _written_in_place(n)
-        if target is not None:
-            written.setdefault(target, n)
+    written = _first_writes(_nodes(function))
     for n in _nodes(function):
         if not (isinstance(n, ast.Assign) and len(n.targets) >= 2
                 and all(isinstance(t, ast.Name) for t in n.targets)
