@@ -1663,3 +1663,41 @@ def test_a_reader_that_fails_costs_no_other_findings(monkeypatch):
         def shear_matrix(s):
             return np.eye(3) + s * np.eye(3, k=1)
         """) == {"np.eye(n, k) fills its whole off-diagonal"}
+
+
+def test_rows_of_np_empty_filled_outside_the_loop_and_a_scale_fixed_after_are_not_read():
+    """Review: np.empty whose skipped rows are set after the loop (or filled before it) holds no garbage; P scaled by
+    its whole row's norm and K divided by K[2, 2] afterwards may be right (t solved before K is divided)."""
+    rows = """
+        import numpy as np
+
+        def track(frames):
+            poses = np.empty((len(frames), 6))
+            {before}
+            found_any = np.zeros(len(frames), bool)
+            for i, frame in enumerate(frames):
+                found, pose = detect(frame)
+                if not found:
+                    continue
+                poses[i] = pose
+                found_any[i] = True
+            {after}
+            return poses
+        """
+    read = {"rows of np.empty left unwritten where a loop continues"}
+    assert one(rows.format(before="pass", after="pass")) == read
+    assert not one(rows.format(before="poses.fill(np.nan)", after="pass"))
+    assert not one(rows.format(before="pass", after="poses[~found_any] = np.nan"))
+    scaled = """
+        import numpy as np
+
+        def decompose(P):
+            P = P / np.linalg.norm(P[2])
+            K, R = rq(P[:, :3])
+            t = np.linalg.solve(K, P[:, 3])
+            {fixed}
+            return K, R, t
+        """
+    assert one(scaled.format(fixed="pass")) == {"a whole row's norm where the block's row's belongs"}
+    assert not one(scaled.format(fixed="K = K / K[2, 2]"))
+    assert not one(scaled.format(fixed="K /= K[-1, -1]"))

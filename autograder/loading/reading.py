@@ -1668,11 +1668,16 @@ def _empty_rows_skipped(name, function) -> list[Finding]:
         return []
     for loop in (node for node in _nodes(function) if isinstance(node, (ast.For, ast.While))):
         body = list(_loop_body_nodes(loop))
-        writes = [n for n in body if _written_in_place(n) in empties and isinstance(n, ast.Assign)]
+        inside = {id(n) for statement in loop.body for n in ast.walk(statement)}
+        # (an array also written outside the loop -- filled with NaN before it, its skipped rows set after it --
+        # is no garbage)
+        outside = {_written_in_place(n) for n in _nodes(function) if id(n) not in inside}
+        writes = [n for n in body if _written_in_place(n) in empties.keys() - outside and isinstance(n, ast.Assign)]
+        blocks = {id(statement): block for n in body if isinstance(n, (ast.If, ast.Try, ast.With))
+                  for block in (getattr(n, "body", []), getattr(n, "orelse", [])) for statement in block}
         for skip in (n for n in body if isinstance(n, ast.Continue)):
             # (the block that continues writes nothing of the array before it: `out[i] = np.nan; continue` is fine)
-            block = next((b for n in body if isinstance(n, (ast.If, ast.Try, ast.With))
-                          for b in (getattr(n, "body", []), getattr(n, "orelse", [])) if skip in b), None)
+            block = blocks.get(id(skip))
             if block is None or any(_written_in_place(s) in empties for s in block):
                 continue
             later = [w for w in writes if _line(w) > _line(skip)]
@@ -1701,6 +1706,13 @@ def _row_norm_of_whole_matrix(name, function) -> list[Finding]:
     """``P / np.linalg.norm(P[2])`` where the code takes P's left block ``P[:, :3]`` as the matrix it decomposes:
     the whole row's length counts its last column too (P[2, 3], t_z's share), where the block's row's belongs."""
     blocks = {found for n in _nodes(function) if (found := _column_block(n)) is not None}
+    # (code that divides by a matrix's last diagonal entry -- K / K[2, 2] -- fixes the scale afterwards, and with t
+    # solved from the K before it, the whole row's norm does no harm)
+    if any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) and isinstance(n.right, ast.Subscript)
+           and ast.unparse(n.right.slice).strip("()") in ("2, 2", "-1, -1") for n in _nodes(function)) \
+            or any(isinstance(n, ast.AugAssign) and isinstance(n.op, ast.Div) and isinstance(n.value, ast.Subscript)
+                   and ast.unparse(n.value.slice).strip("()") in ("2, 2", "-1, -1") for n in _nodes(function)):
+        return []
     for n in _nodes(function):
         if isinstance(n, ast.Call) and _call_name(n) == "norm" and len(n.args) == 1 and not n.keywords \
                 and isinstance(n.args[0], ast.Subscript) and isinstance(n.args[0].value, ast.Name) \
