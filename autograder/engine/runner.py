@@ -607,7 +607,9 @@ def _named_by_reading(verdict: Verdict, reading: Reading, check: Check, trial: T
         # smoothness is far too large" where one array appended at every turn makes every row the last; and so
         # does any cause it inferred from what the answers look like, "it looks like x is computed from Y", where
         # the code computes x from X into an array that is also y's: the reading is certain, the look is not)
-        guessed = without_guessed_cause(lead, verdict.mistake, inferred=True)
+        # (only a slip read in a function the check called itself: one in a helper it reaches may be another
+        # mistake than the one the answers show)
+        guessed = without_guessed_cause(lead, verdict.mistake, inferred=finding.function in called)
         if guessed != lead:
             return replace(verdict, message=f"{guessed} {sentence}{newline}{rest}", mistake=finding.mistake, hint="")
         return replace(verdict, message=f"{lead} {sentence}{newline}{rest}")
