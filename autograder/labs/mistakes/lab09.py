@@ -27,6 +27,12 @@ _APERTURE = """
 """
 
 MISTAKES = {
+    # the blind set 1205g's 09/03: a generator made only where a seed is given, read on every call: with the default
+    # seed=None the name is local and unassigned (UnboundLocalError)
+    "simulate_aperture making its generator only where a seed is given": ("lab09.ex4", reference_def_with(
+        "lab09_camera", "simulate_aperture", "rng = np.random.default_rng(seed)",
+        "if seed is not None:\n"
+        "    rng = np.random.default_rng(seed)"), ["assigns `rng` (line", "under `seed is not None`"]),
     # the blind set 1205b's 09/06: each point drawn in a colour of its own (a colour map of depth), not the default red
     "calibrate making the board's grid with a float step": ("lab09.ext1", reference_def_with(
         "lab09_camera", "calibrate", "objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size",
