@@ -3,6 +3,8 @@
 A submission should get the same names on a busy machine as on a quiet one (a regrade, a batch
 beside other work): the error model's and the repairs' budgets are CPU seconds of this thread, the
 reference's helper and the student's sandboxes, within WALL_SLACK times the budget of wall-clock time.
+Those seconds are the budgets' machine's: a slower machine's count as fewer (its measured pace), so it
+tells the same names, taking longer.
 """
 
 from __future__ import annotations
@@ -11,10 +13,19 @@ import subprocess
 import sys
 import time
 
+import pytest
+
 from autograder.engine.mutants import naming
 from autograder.sandbox import evidence
 
 SPIN = "import time\nwhile time.process_time() < {cpu} + 0.1: pass\ntime.sleep(60)"   # (/proc counts in ticks)
+
+
+@pytest.fixture(autouse=True)
+def budgets_machine(request, monkeypatch):
+    """The counting tests run as on the machine the budgets were set on (pace 1)."""
+    if "pace" not in request.node.name:
+        monkeypatch.setattr(naming, "machine_pace", lambda: 1.0)
 
 
 def _spinning(cpu: float) -> subprocess.Popen:
@@ -121,3 +132,50 @@ def test_the_helper_knows_what_its_start_cost():
         assert 0.0 < helper.startup_cpu <= (evidence.cpu_seconds(pid) or 0.0)
     finally:
         helper.close()
+
+
+def _spin_here(cpu: float) -> None:
+    started = time.thread_time()
+    while time.thread_time() - started < cpu:
+        pass
+
+
+def _measured_afresh(monkeypatch) -> float:
+    monkeypatch.setattr(naming, "_PACE", [])
+    return naming.machine_pace()
+
+
+def test_a_machine_s_pace_is_its_time_for_the_work_the_budgets_were_set_with(monkeypatch):
+    """Work that takes this machine twice the budgets' machine's time: a pace of 2, within its bounds."""
+    monkeypatch.setattr(naming, "_pace_work", lambda: _spin_here(0.02))
+    monkeypatch.setattr(naming, "PACE_SECONDS", 0.01)
+    assert 1.8 <= _measured_afresh(monkeypatch) <= 2.3
+    monkeypatch.setattr(naming, "PACE_SECONDS", 0.001)   # twenty times slower: taken as the bound
+    assert _measured_afresh(monkeypatch) == naming.PACE_BOUNDS[1]
+
+
+def test_the_pace_is_measured_again_once_its_measure_is_old(monkeypatch):
+    """A machine's pace drifts (other work comes and goes): a measure stands for PACE_FRESH seconds."""
+    monkeypatch.setattr(naming, "_pace_work", lambda: _spin_here(0.01))
+    monkeypatch.setattr(naming, "PACE_SECONDS", 0.01)
+    monkeypatch.setattr(naming, "PACE_FRESH", 0.3)
+    first = _measured_afresh(monkeypatch)
+    assert naming.PACE_BOUNDS[0] <= first <= naming.PACE_BOUNDS[1]
+    monkeypatch.setattr(naming, "_pace_work", lambda: _spin_here(0.03))   # the machine three times slower
+    assert naming.machine_pace() == first   # (the measure still stands)
+    time.sleep(0.35)
+    assert naming.machine_pace() >= 2.5 * first
+
+
+def test_a_slower_machine_s_seconds_count_as_fewer_of_the_budget_s(monkeypatch):
+    """At pace 2 a naming's 1 s budget lasts 2 s of this machine's time: as many changes are tried."""
+    monkeypatch.setattr(naming, "machine_pace", lambda: 2.0)
+    wall = naming.Clock(1.0)
+    time.sleep(0.4)
+    assert 0.18 <= wall.used() < 0.3
+    assert 1.0 < wall.wall_left() <= 1.6
+    cpu = naming.Clock(1.0, lambda: [])
+    _spin_here(0.4)
+    assert 0.18 <= cpu.used() < 0.3
+    # (the budget's 0.8 s left, WALL_SLACK times as long in wall time on a busy machine, at this pace)
+    assert 0.7 * naming.WALL_SLACK * 2 < cpu.wall_left() <= 0.82 * naming.WALL_SLACK * 2

@@ -369,8 +369,9 @@ def decide(trial, function: str, substitutes, seconds: float = CHECK_SECONDS) ->
     shared = trial.sandbox.shared
     spent = shared.setdefault(SHARED_SECONDS, [0.0])
     remaining = getattr(trial.sandbox, "remaining", lambda: float("inf"))()
-    # at most half what the exercise's budget and the submission's deadline leave: the checks after come first
-    clock = naming.work_clock(trial, min(seconds, GRADING_SECONDS - spent[0], remaining / 2))
+    # at most half what the exercise's budget and the submission's deadline leave (this machine's seconds,
+    # a naming's are the budgets' machine's): the checks after come first
+    clock = naming.work_clock(trial, min(seconds, GRADING_SECONDS - spent[0], remaining / 2 / naming.machine_pace()))
     decisions = []
     try:
         for _, args, kwargs, answer in _judged_calls(trial, function):

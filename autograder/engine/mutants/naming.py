@@ -767,6 +767,51 @@ def derived_calls(call, count, seed, defaults=()):
 
 # ------------------------------------------------------------------ naming
 WALL_SLACK = 3.0   # a naming's wall-clock time is at most this many times its budget (a busy machine)
+PACE_SECONDS = 0.015   # CPU seconds of :func:`_pace_work` on the machine the budgets were set on
+PACE_BOUNDS = (0.5, 4.0)   # a machine's pace is taken within these (a measure gone wrong stays harmless)
+PACE_FRESH = 2.0   # seconds a measure of the pace stands for
+
+
+def _pace_work() -> None:
+    """A few milliseconds of the error model's kinds of work: parsing and compiling source, running
+    Python, small array arithmetic and an OpenCV call (a mutant made, run, its answer compared)."""
+    import cv2
+    source = "\n".join(f"def f{i}(x, y):\n    z = x * {i} + y\n    return [v for v in range(3) if v != z]\n"
+                       for i in range(40))
+    namespace: dict = {}
+    exec(compile(ast.parse(source), "<pace>", "exec"), namespace)
+    sum(len(namespace[f"f{i}"](i, 1)) for i in range(40) for _ in range(60))
+    a = np.linspace(0.0, 1.0, 64 * 64).reshape(64, 64)
+    for _ in range(180):
+        b = a @ a.T / (1.0 + np.abs(a).sum(axis=0))
+        np.allclose(a, b, rtol=1e-6)
+    cv2.warpAffine(a.astype(np.float32), np.float32([[1, 0.1, 2], [0.1, 1, 3]]), (64, 64))
+
+
+_PACE: list = []   # [(time.monotonic() when measured, the pace)]: the last measure
+
+
+def machine_pace() -> float:
+    """How many times longer this machine takes over the error model's work now than the one its budgets
+    (:data:`CHECK_SECONDS`, :data:`GRADING_SECONDS`) were set on: a naming's clock counts its seconds
+    divided by it, so a slower machine (a grading container, CI) or one whose cores other work shares
+    (a batch, a virtual machine's neighbours: CPU seconds then stretch too) tries as many changes and tells
+    the same names, taking longer. The median CPU time of three runs of :func:`_pace_work`, measured again
+    when the last measure is older than :data:`PACE_FRESH` seconds (a machine's pace drifts)."""
+    now = time.monotonic()
+    if _PACE and now - _PACE[0][0] < PACE_FRESH:
+        return _PACE[0][1]
+    if not _PACE:
+        _pace_work()   # (imports, caches: the first run is no measure)
+    spent = []
+    for _ in range(3):
+        started = time.thread_time()
+        _pace_work()
+        spent.append(time.thread_time() - started)
+    low, high = PACE_BOUNDS
+    pace = float(min(high, max(low, float(np.median(spent)) / PACE_SECONDS)))
+    _PACE[:] = [(time.monotonic(), pace)]
+    return pace
 
 
 class Clock:
@@ -776,10 +821,13 @@ class Clock:
     and ``processes()`` (the reference's helper, the student's sandboxes) -- so that a submission gets
     the same names on a busy machine as on a quiet one (a regrade, a batch beside other work, a class
     graded on shared cores), within :data:`WALL_SLACK` times the budget in wall-clock time. Without
-    ``processes``, or where a process's CPU time cannot be read (no ``/proc``), wall-clock seconds."""
+    ``processes``, or where a process's CPU time cannot be read (no ``/proc``), wall-clock seconds.
+    Seconds of the budget are those of the machine it was set on: this machine's are divided by its
+    :func:`machine_pace` (:attr:`pace`), so that a slower one tells the same names, taking longer."""
 
     def __init__(self, seconds: float, processes=None):
         self.seconds, self.started = seconds, time.monotonic()
+        self.pace = machine_pace()
         self._processes = processes
         self._thread = time.thread_time()
         self._cpu: dict[int, list[float]] = {}         # pid -> [CPU seconds when first seen, last seen]
@@ -807,10 +855,10 @@ class Clock:
         wall-clock time (a very busy machine)."""
         wall = time.monotonic() - self.started
         if self._processes is None:
-            return wall
+            return wall / self.pace
         self._look()
         cpu = time.thread_time() - self._thread + sum(last - first for first, last in self._cpu.values())
-        return max(cpu, wall / WALL_SLACK)
+        return max(cpu, wall / WALL_SLACK) / self.pace
 
     def left(self) -> float:
         return self.seconds - self.used()
@@ -820,8 +868,9 @@ class Clock:
         as long on a busy machine (a timeout of CPU seconds would cut the reference's confirmation answers
         short there, and the names they decide would be lost or differ), within the naming's wall bound."""
         if self._processes is None:
-            return self.left()
-        return min(self.left() * WALL_SLACK, self.seconds * WALL_SLACK - (time.monotonic() - self.started))
+            return self.left() * self.pace
+        return min(self.left() * WALL_SLACK * self.pace,
+                   self.seconds * WALL_SLACK * self.pace - (time.monotonic() - self.started))
 
 
 def work_clock(trial, seconds: float) -> Clock:

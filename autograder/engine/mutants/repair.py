@@ -2226,7 +2226,7 @@ def _confirming_seconds(trial) -> float:
     about :data:`CONFIRMATION_INPUTS` inputs, at the student's own time per call (with the helpers' and the
     grader's own work beside them, measured: half as much again), or :data:`RESERVE` if longer."""
     per_call = getattr(trial, "student_seconds", 0.0) / max(1, len(getattr(trial, "calls", ()) or ()))
-    return max(RESERVE, 3 * CONFIRMATION_INPUTS * per_call)
+    return max(RESERVE, 3 * CONFIRMATION_INPUTS * per_call / naming.machine_pace())
 
 
 def _recorded(trial) -> dict:
@@ -2843,7 +2843,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         runnable = twins + [m for m in runnable if m not in twins]
     # (time kept for confirming a change found: a slow function's -- features matched on photographs --
     # confirmation calls take as long as its own calls, a few of them)
-    reserve = min(max(RESERVE, CONFIRMATION_CALLS * variant.seconds_per_call), clock.left() / 2)
+    reserve = min(max(RESERVE, CONFIRMATION_CALLS * variant.seconds_per_call / clock.pace), clock.left() / 2)
     # (and once a change is found, the time its confirmation takes: the reference and the change each
     # run on every confirmation input -- a whole pipeline each for a slow function)
     confirming = max(reserve, _confirming_seconds(trial))
