@@ -826,8 +826,8 @@ class Clock:
     :func:`machine_pace` (:attr:`pace`), so that a slower one tells the same names, taking longer."""
 
     def __init__(self, seconds: float, processes=None):
+        self.pace = machine_pace()   # (measured before the clock starts: its measure is no naming's work)
         self.seconds, self.started = seconds, time.monotonic()
-        self.pace = machine_pace()
         self._processes = processes
         self._thread = time.thread_time()
         self._cpu: dict[int, list[float]] = {}         # pid -> [CPU seconds when first seen, last seen]
