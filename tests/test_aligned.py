@@ -58,9 +58,15 @@ def test_an_extra_rebinding_is_taken_out():
     student = REFERENCE.replace("    return mapped[:, :2]", "    mapped = np.round(mapped)\n    return mapped[:, :2]")
     tree, reference = ast.parse(student), ast.parse(REFERENCE)
     # (the extra `mapped = np.round(mapped)` has counterparts of its signature -- `mapped = ...` -- that differ
-    # everywhere: made one of them it would show the reference's line, so it is not; nor is it a step to drop)
-    extra = [m for m in aligned_mutants(tree, reference, "project") if m.operator == "extra_step"]
-    assert extra == []
+    # everywhere: made one of them it would show the reference's line, so it is not; each of them is written
+    # word for word elsewhere, so it is a step of the student's own, to take out)
+    made = aligned_mutants(tree, reference, "project")
+    assert [m.operator for m in made] == ["extra_step"]
+    assert "np.round" not in apply_edits(student, made[0].edits)
+    student = REFERENCE.replace("    mapped = mapped / mapped[:, 2:3]\n", "    mapped = np.round(mapped)\n")
+    tree = ast.parse(student)
+    # (where a `mapped = ...` of the reference is not written, the other one's place is its counterpart's)
+    assert not [m for m in aligned_mutants(tree, reference, "project") if m.operator == "extra_step"]
     student = REFERENCE.replace("    return mapped[:, :2]", "    points = points[::-1]\n    return mapped[:, :2]")
     tree = ast.parse(student)
     extra = [m for m in aligned_mutants(tree, reference, "project") if m.operator == "extra_step"]

@@ -5298,3 +5298,13 @@ def test_a_sum_of_squares_named_where_its_root_belongs_is_a_change_tried():
     """)
     changes = {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None and m.operator == "measure"}
     assert ("x ** 2 + y ** 2", "np.sqrt(x ** 2 + y ** 2)") in changes, changes
+
+
+def test_results_returned_in_another_order_are_told_in_the_order_asked(tmp_path):
+    """`return R, t, K` where the API asks (K, R, t): one result moved past the others (cv2.calibrateCamera's
+    rms-first order kept) is no exchange of two; the change that puts it back in its place is told."""
+    folder = edited_reference(tmp_path, "lab10_camera2", ("    return K / scale, R, t\n", "    return R, t, K / scale\n"))
+    result = grade(folder, ["lab10.ex5"], pictures="none", include_hidden=False)
+    told = [c for c in check_results(result, "lab10.ex5") if c.mistake.startswith(repair.MISTAKE)]
+    assert told, [c.message for c in check_results(result, "lab10.ex5")]
+    assert "changing `(R, t, K / scale)` to `(K / scale, R, t)`" in told[0].message, told[0].message

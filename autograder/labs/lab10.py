@@ -823,10 +823,14 @@ def decomposition_on_probe(t: Trial) -> list[str]:
 SLICED_COLUMN = expr("_[:, 3:]").saying("slices the last column as P[:, 3:]")
 
 
-@ex5.check("decompose_camera_matrix of P = K [R | t]", points=3)
+@ex5.check("decompose_camera_matrix of P = K [R | t], for a camera at the world origin too (t = 0)", points=3)
 def decompose_example(t):
     _, K, R, tv, _ = truth.random_camera_matrix(501)
     judge_decomposition(t, truth.camera(K, R, tv), K, R, tv)
+    # (the world's origin on the camera's principal plane -- a camera at the origin -- makes P[2, 3] = 0: the
+    # API's P = K [R | t] for any t, and the first camera of every two-view setup, K [I | 0])
+    origin = np.zeros(3)
+    judge_decomposition(t, truth.camera(K, R, origin), K, R, origin, what="decompose_camera_matrix(K [R | 0])")
 
 
 @ex5.check("decompose_camera_matrix for P at any scale and sign", points=3)

@@ -27,6 +27,7 @@ import builtins
 import contextlib
 import copy
 import difflib
+from collections import Counter
 
 from ...loading.parsing import parse
 from .anchors import _key, _names
@@ -264,6 +265,15 @@ def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outsid
         return []   # (each statement is compared with the reference's: a def far longer than any lab's is not read)
     mine, theirs = _statements(student), _statements(_renamed(reference, _names_map(student, reference)))
     written = {_key(s) for s in theirs}
+    # (a reference statement the student wrote word for word is that statement's: it is no counterpart of
+    # another -- `P = P / P[2, 3]` beside the reference's `P = -P`, written too, is a step of its own)
+    copied = Counter(_key(s) for s in mine if _key(s) in written)
+    free = []
+    for model in theirs:
+        if copied[_key(model)] > 0:
+            copied[_key(model)] -= 1
+        else:
+            free.append(model)
     ordinals = _ordinals(student)
     changes, seen = [], set()
     parameters = {a.arg for a in ast.walk(student.args) if isinstance(a, ast.arg)}
@@ -274,7 +284,7 @@ def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outsid
         own = _key(statement) not in written
         if own:
             known = bound | outside | _names([statement], ast.Store)   # (a loop's own target, a comprehension's names)
-            counterparts = _counterparts(statement, theirs, known, frozenset(bound - as_reference),
+            counterparts = _counterparts(statement, free, known, frozenset(bound - as_reference),
                                          frozenset(as_reference | outside))
             for model, places in counterparts[:2]:
                 edits = tuple((ordinals[id(a)], ast.unparse(b)) for a, b in places)
@@ -284,7 +294,7 @@ def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outsid
                     if len(places) == 1:
                         alike.setdefault((ast.dump(places[0][0]), edits[0][1]), []).append(edits[0])
             if not counterparts and isinstance(statement, _SIMPLE) and _rebinds(statement, bound) \
-                    and _signature(statement) not in {_signature(s) for s in theirs}:
+                    and _signature(statement) not in {_signature(s) for s in free}:
                 changes.append(("extra_step", ((ordinals[id(statement)], None),)))
         header = [statement.target] if isinstance(statement, ast.For) else [statement] if isinstance(statement, _SIMPLE) else []
         bound |= _names(header, ast.Store)

@@ -1001,6 +1001,9 @@ def _rounded_to_decimals(node, dotted: str) -> bool:
 
 def _make_swap_items(node, payload):
     new = copy.deepcopy(node)   # (h, w) -> (w, h): the same for a tuple assigned to, `w, h = image.shape[:2]`
+    if payload[0] == "moved":   # (a, b, c) -> (b, c, a): the items in the order given
+        new.elts = [new.elts[k] for k in payload[1]]
+        return new
     i, j = payload
     new.elts[i], new.elts[j] = new.elts[j], new.elts[i]
     return new
@@ -6108,6 +6111,14 @@ def _item_swaps(node, parent):
     for i, j in pairs:
         if ast.dump(items[i]) != ast.dump(items[j]):
             yield "swap_items", (i, j), ""
+    # (and the results a function returns in another order than they are asked in, one moved past
+    # others: `return rms, K, dist` -- cv2.calibrateCamera's order -- where `K, dist, rms` is asked)
+    if isinstance(parent, ast.Return) and 3 <= len(items) <= 4:
+        for i, j in itertools.permutations(range(len(items)), 2):
+            if abs(i - j) > 1:
+                order = list(range(len(items)))
+                order.insert(j, order.pop(i))
+                yield "swap_items", ("moved", tuple(order)), ""
     # (and one coordinate of two points exchanged between them: a line's end points each given the other's
     # row, `(x_top, h - 1), (x_bottom, 0)` for `(x_top, 0), (x_bottom, h - 1)`)
     points = [item for item in items if isinstance(item, (ast.Tuple, ast.List))]

@@ -1160,7 +1160,7 @@ class _Student:
         """Whether the mutant exchanges two items that are each other's twins (`(int(y_max - y_min) + 1,
         int(x_max - x_min) + 1)`: the same code with x for y, a size given rows first)."""
         where, ordinal, operator, payload = mutant.edits[0]
-        if operator != "swap_items" or len(mutant.edits) != 1:
+        if operator != "swap_items" or len(mutant.edits) != 1 or payload[0] == "moved":
             return False
         nodes, _ = self._walk(where)
         node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None

@@ -34,6 +34,11 @@ MISTAKES = {
         "if seed is not None:\n"
         "    rng = np.random.default_rng(seed)"), ["assigns `rng` (line", "under `seed is not None`"]),
     # the blind set 1205b's 09/06: each point drawn in a colour of its own (a colour map of depth), not the default red
+    # the blind set 1205h's 09/06: cv2.calibrateCamera's order kept for the API's (K, dist, rms)
+    "calibrate returning its results in OpenCV's order (rms first)": ("lab09.ext1", reference_def_with(
+        "lab09_camera", "calibrate", "return K, dist.ravel()[:5], float(rms)",
+        "return float(rms), K, dist.ravel()[:5]"),
+        ["changing `(float(rms), K, dist.ravel()[:5])` to `(K, dist.ravel()[:5], float(rms))`"]),
     "calibrate making the board's grid with a float step": ("lab09.ext1", reference_def_with(
         "lab09_camera", "calibrate", "objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size",
         "xs, ys = np.meshgrid(np.arange(0.0, cols * square_size, square_size), "

@@ -36,6 +36,10 @@ MISTAKES = {
             map1, map2 = cv2.initUndistortRectifyMap(K, dist, None, K, (640, 480), cv2.CV_16SC2)
             return cv2.remap(image, map1, map2, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
         """, ["to `(image.shape[1], image.shape[0])`"]),
+    # the blind set 1205h's 10/03: P divided by P[2, 3], zero for a camera at the world origin (its `P = -P` kept)
+    "decompose_camera_matrix dividing P by its entry P[2, 3] first": ("lab10.ex5", reference_def_with(
+        "lab10_camera2", "decompose_camera_matrix", "P = np.asarray(P, dtype=np.float64)",
+        "P = np.asarray(P, dtype=np.float64)\nP = P / P[2, 3]"), ["removing `P = P / P[2, 3]`"]),
     "decompose_camera_matrix keeping QR's triangular factor as R": ("lab10.ex5", reference_def_with(
         "lab10_camera2", "decompose_camera_matrix", "R = flip @ Q.T", "R = U"),
         ["it is upper triangular, as a QR or RQ decomposition's triangular factor is"]),
