@@ -3597,8 +3597,18 @@ def _mid_grey(function) -> bool:
                for n in ast.walk(function))
 
 
+def _gray_encoding(node) -> bool:
+    """``k ^ (k >> 1)``: a Gray code made from binary (a table of the stripes' codes), no decoding of one."""
+    if not (isinstance(node, ast.BinOp) and isinstance(node.op, ast.BitXor)):
+        return False
+    for one, other in ((node.left, node.right), (node.right, node.left)):
+        if isinstance(other, ast.BinOp) and isinstance(other.op, ast.RShift) and ast.dump(other.left) == ast.dump(one):
+            return True
+    return False
+
+
 XOR = Predicate("XORs bits", lambda function: any(
-    (isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.BitXor))
+    (isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.BitXor) and not _gray_encoding(n))
     # (np.logical_xor called, or its ufunc methods: np.logical_xor.accumulate(bits, axis=0))
     or (isinstance(n, ast.Attribute) and n.attr in ("bitwise_xor", "logical_xor"))
     or (isinstance(n, ast.Name) and n.id in ("bitwise_xor", "logical_xor"))

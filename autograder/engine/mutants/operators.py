@@ -76,6 +76,7 @@ OPERATORS = {
     "unpack_pair": ("unpack", "pair", "tuple"),                 # (student only) X = f(p) -> X, _ = f(p)
     "source_names": ("source", "scaled", "distorted", "before"),
     "tile_repeat": ("tile", "repeat", "order", "pair"),
+    "stack_window": ("window", "axis", "volume", "stack"),      # (student only) uniform_filter(v, size=k) -> size=(1, k, k)
     "square_window": ("window", "block", "square", "strip"),     # (student only) (k, 1) -> (k, k) in a call           # (student only) np.tile(a, n) <-> np.repeat(a, n)
     "math_numpy": ("math", "numpy", "array", "number"),           # (student only) math.pow(x, 2) -> np.power(x, 2)   # (student only) f(xr, yr) -> f(x, y), xr = x * k   # (student only) img.shape[::-1] -> img.shape[1::-1]   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
@@ -763,6 +764,20 @@ def _make_math_numpy(node, payload):
     new = copy.deepcopy(node)   # math.pow(r2, 2) -> np.power(r2, 2)
     new.func = _name("np." + _MATH_TO_NUMPY[_dotted(node.func)[5:]])
     return new
+
+
+def _make_stack_window(node, payload):
+    new = copy.deepcopy(node)   # size=k -> size=(1, k, k): a window over each image of a stack, not across them
+    keyword = next(k for k in new.keywords if k.arg in _WINDOW_KEYWORDS)
+    kept = ast.Constant(0 if keyword.arg == "sigma" else 1)
+    sides = [copy.deepcopy(keyword.value), copy.deepcopy(keyword.value)]
+    keyword.value = ast.Tuple([kept, *sides] if payload == "first" else [*sides, kept], ast.Load())
+    return new
+
+
+_WINDOW_FILTERS = frozenset({"uniform_filter", "gaussian_filter", "median_filter", "maximum_filter",
+                             "minimum_filter", "percentile_filter", "rank_filter"})
+_WINDOW_KEYWORDS = ("size", "sigma")
 
 
 def _make_square_window(node, payload):
@@ -1683,7 +1698,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
-         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "source_names": _make_source_names, "tile_repeat": _make_tile_repeat, "square_window": _make_square_window, "math_numpy": _make_math_numpy, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "source_names": _make_source_names, "tile_repeat": _make_tile_repeat, "square_window": _make_square_window, "stack_window": _make_stack_window, "math_numpy": _make_math_numpy, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -2609,6 +2624,12 @@ def _changes(node, parents, words: _Words, line):
             yield from _counted_loop_changes(loop)
     if words.student and isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name):
         yield from _index_of_the_loop(node, parents)
+    if words.student and isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _WINDOW_FILTERS \
+            and any(k.arg in _WINDOW_KEYWORDS and not isinstance(k.value, (ast.Tuple, ast.List)) for k in node.keywords):
+        # (the student's code only: scipy's filters take a number as the window along EVERY axis -- a cost volume
+        # (D, H, W) averaged across its disparities too; one window per image of the stack, either end)
+        yield "stack_window", "first", ""
+        yield "stack_window", "last", ""
     if words.student and isinstance(node, ast.Tuple) and len(node.elts) == 2 and isinstance(parent, ast.Call) \
             and sum(isinstance(e, ast.Constant) and e.value == 1 for e in node.elts) == 1 \
             and not all(isinstance(e, ast.Constant) for e in node.elts):

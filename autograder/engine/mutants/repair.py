@@ -391,7 +391,7 @@ class _Student:
                     taken[(m.where != function, m.operator)] += 1
                     # (a line made its twin line's again, where the two differ at one place but their
                     # names: the slip the code itself shows, first of all)
-                    turn[m.key] -= m.operator in SHOWN_BY_THE_CODE
+                    turn[m.key] -= m.operator in SHOWN_BY_THE_CODE or self.filters_a_stack(m)
                 # Code written as the reference's but for a statement or two: those of a private helper
                 # first (a helper's `xy = mapped[..., :2]` before the 300 changes of the function's own
                 # lines, all the reference's); the function's own keep their turns (a reshape's order
@@ -1169,6 +1169,28 @@ class _Student:
         first, second = (re.findall(r"\w+", ast.unparse(node.elts[k])) for k in payload)
         pairs = [(a, b) for a, b in zip(first, second) if a != b]
         return len(first) == len(second) and bool(pairs) and all(twin_names(a, b) for a, b in pairs)
+
+    def filters_a_stack(self, mutant) -> bool:
+        """Whether the mutant gives a filter's window per image of an array the def stacks itself (`np.stack`,
+        `np.dstack`, `np.array([...])`, or made with a shape of three sizes): one number as the window runs across
+        the stack too, the slip the code shows."""
+        where, ordinal, operator, _ = mutant.edits[0]
+        if operator != "stack_window" or len(mutant.edits) != 1:
+            return False
+        nodes, _ = self._walk(where)
+        call = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
+        if not (isinstance(call, ast.Call) and call.args and isinstance(call.args[0], ast.Name)):
+            return False
+        name = call.args[0].id
+        for node in nodes:
+            if isinstance(node, ast.Assign) and any(isinstance(t, ast.Name) and t.id == name for t in node.targets) \
+                    and isinstance(node.value, ast.Call):
+                made = _call_name(node.value)
+                shape = node.value.args[0] if node.value.args else None
+                if made in ("stack", "dstack", "array") or (made in ("zeros", "empty", "full", "ones")
+                                                            and isinstance(shape, ast.Tuple) and len(shape.elts) == 3):
+                    return True
+        return False
 
     def twin_sibling(self, mutant) -> bool:
         """Whether the mutant does a step done to one name to its twin too (`pts1 = pts1[inliers]` ->

@@ -158,6 +158,21 @@ MISTAKES = {
             shifts = np.arange(n_bits - 1, -1, -1)[:, None]
             return (((gray[None, :] >> shifts) & 1) * 255).astype(np.uint8)
         """, ["the stripe index is one too large"]),
+    # the blind set 1205h's 12/01: scipy's box filter given one size averages the (D, H, W) volume across its
+    # disparities too
+    "block_matching box-filtering the cost volume along the disparities too": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            from scipy.ndimage import uniform_filter
+            left, right = _grey_float(left), _grey_float(right)
+            if cost == "ncc":
+                return np.argmin(_ncc_volume(left, right, int(max_disparity), int(block_size)), axis=0).astype(float)
+            width = left.shape[1]
+            volume = np.stack([(left - _shift_right(right, d)) ** 2 for d in range(int(max_disparity) + 1)])
+            volume = uniform_filter(volume, size=int(block_size), mode="reflect")
+            for d in range(int(max_disparity) + 1):
+                volume[d, :, :min(d, width)] = np.inf
+            return np.argmin(volume, axis=0).astype(np.float64)
+        """, ["to `uniform_filter(volume, size=(1, int("]),
     # the blind set 1204g's 12/02: the search not capped at the image's width (a pair narrower than the range raises)
     "block_matching searching past the image's width": ("lab12.ex4", """
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
