@@ -3,7 +3,8 @@
 import pytest
 
 from autograder.labs.mistakes.lab09 import ADVICE, MISTAKES
-from conftest import assert_advice_case, assert_all_not_implemented, assert_full_marks, assert_mistake_named
+from conftest import (assert_advice_case, assert_all_not_implemented, assert_full_marks, assert_mistake_named,
+                      check_results, graded_case)
 
 MODULE = "lab09_camera"
 
@@ -83,3 +84,13 @@ def test_lens_distortion_through_cv2_project_points_scores_full_marks(tmp_path):
     failed = [(c.name, c.message) for e in result.exercises for c in e.checks if not c.passed]
     assert not failed, failed
     assert result.total == result.max_total > 0
+
+
+def test_rays_crowding_a_blur_disc_of_another_size_are_not_told_to_take_the_root_they_take():
+    """The radius drawn as aperture * sqrt(u), scaled by a blur radius from the distance |X|: the share of the
+    rays within half the expected radius is off, and the advice says so without the recipe the code follows."""
+    exercise, source, _ = MISTAKES["simulate_aperture scaling the blur by the points' distance, not their depth"]
+    result = graded_case(MODULE, exercise, source)
+    [advice] = [c for c in check_results(result, exercise) if c.name.startswith("simulate_aperture fills the pinhole")]
+    assert "of the rays land within half the blur radius" in advice.message, advice.message
+    assert "sqrt(u)" not in advice.message and "do not all reach its blur radius" in advice.message, advice.message

@@ -29,6 +29,11 @@ _APERTURE = """
 MISTAKES = {
     # the blind set 1205g's 09/03: a generator made only where a seed is given, read on every call: with the default
     # seed=None the name is local and unassigned (UnboundLocalError)
+    # the blind set 1205h's 09/05: each point's distance from the pinhole where its depth belongs (blur discs
+    # too small off the axis)
+    "simulate_aperture scaling the blur by the points' distance, not their depth": ("lab09.ex4", reference_def_with(
+        "lab09_camera", "simulate_aperture", "spread = 1.0 + f / X[:, 2]                                                   # (N,)",
+        "spread = 1.0 + f / np.linalg.norm(X, axis=1)"), ["changing `np.linalg.norm(X, axis=1)` to `X[:, 2]`"]),
     "simulate_aperture making its generator only where a seed is given": ("lab09.ex4", reference_def_with(
         "lab09_camera", "simulate_aperture", "rng = np.random.default_rng(seed)",
         "if seed is not None:\n"
