@@ -526,3 +526,65 @@ def test_a_list_of_none_beside_pairs_made_an_array_is_told_its_appends():
     assert form is not None and "appends None to `projected` (line 8) and a sequence of 2 (line 10)" in form.sentence, form
     alone = source.replace("projected.append(None)", "projected.append((np.nan, np.nan))")
     assert explained(read_code(alone), traceback, message, "f", (points,), {}) is None
+
+
+def _raised_at(source: str, line: int, message: str, args=(None,)):
+    traceback = f'Traceback (your code):\n  File "lab.py", line {line}, in f\n    ...\n{message}'
+    return explained(read_code(textwrap.dedent(source)), traceback, message, "f", args, {})
+
+
+def test_pad_widths_for_fewer_axes_than_a_colour_image_has_are_told_with_numpys_counts():
+    """`np.pad(img, ((0, k), (0, 0)))` of a BGR image (the blind set 1205h's 08/02): NumPy's message counts two
+    pairs and three axes; the call on the line is told with them. Another error on the line is not."""
+    source = """
+        import numpy as np
+
+        def f(img):
+            k = 3
+            out = np.pad(img, ((0, k), (0, 0)))
+            return out
+        """
+    message = ("operands could not be broadcast together with remapped shapes [original->remapped]: (2,2)  and "
+               "requested shape (3,2)")
+    form = _raised_at(source, 6, message)
+    assert form is not None and "`np.pad` the widths `((0, k), (0, 0))`, 2 (before, after) pairs, for an array of 3 " \
+        "axes (a colour image" in form.sentence, form
+    assert _raised_at(source.replace("np.pad", "np.add"), 6, message) is None
+
+
+def test_a_size_computed_from_a_float_is_told_with_the_line_that_made_it_one():
+    """`np.zeros((height, width, 3))` with `width, height = right - left + 1, ...` and `right = np.ceil(...)` (the
+    blind set 1205h's 08/04): followed back to the float; sizes made whole are not told."""
+    source = """
+        import numpy as np
+
+        def f(pts):
+            left, top = np.floor(pts.min(axis=0))
+            right, bottom = np.ceil(pts.max(axis=0))
+            width, height = right - left + 1, bottom - top + 1
+            return np.zeros((height, width, 3))
+        """
+    message = "'numpy.float64' object cannot be interpreted as an integer"
+    form = _raised_at(source, 8, message)
+    assert form is not None and "`height`, a float: it is computed from a float (line 6" in form.sentence, form
+    whole = source.replace("width, height = right - left + 1, bottom - top + 1",
+                           "width, height = int(right - left) + 1, int(bottom - top) + 1")
+    assert _raised_at(whole, 8, message) is None
+
+
+def test_an_entry_written_into_arithmetic_of_a_single_value_is_told():
+    """`depth = f * b / d` then `depth[~valid] = 0` for a 0-d d (the blind set 1205h's 12/05): a NumPy scalar has no
+    entries; a name made as an array is not told."""
+    source = """
+        import numpy as np
+
+        def f(d):
+            valid = d > 0
+            depth = 2.0 * 3.0 / d
+            depth[~valid] = 0.0
+            return depth
+        """
+    message = "'numpy.float64' object does not support item assignment"
+    form = _raised_at(source, 7, message)
+    assert form is not None and "writes into `depth` (line 7), which it computes by arithmetic (line 6)" in form.sentence
+    assert _raised_at(source.replace("depth = 2.0 * 3.0 / d", "depth = np.zeros(3)"), 7, message) is None

@@ -159,6 +159,13 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     found = _UNBOUND.search(message)
     if found:
         return _local_read_first(fn, line, found.group(1) or found.group(2))
+    found = _PAD_PAIRS.search(message)
+    if found:
+        return _pad_pairs(fn, line, *map(int, found.groups()))
+    if _FLOAT_SIZE.search(message):
+        return _float_size(fn, line)
+    if _SCALAR_WRITTEN.search(message):
+        return _scalar_written(fn, line)
     if "NoneType" in message:
         return _none_returned(code, fn, line)
     if "OpenCV(" in message:
@@ -337,6 +344,132 @@ def _local_read_first(fn, line: int, name: str) -> Form | None:
                          f"as the function's own name everywhere in it -- a module-level `{name}` is not read there -- "
                          f"and on this call no assignment of it had run when line {line} read it: assign it on every "
                          f"path before it is read (or give the module's one another name)"), UNBOUND)
+
+
+_PAD_PAIRS = re.compile(r"remapped shapes \[original->remapped\]: \((\d+),\s*2\)\s+and requested shape \((\d+),\s*2\)")
+PAD_PAIRS = "np.pad given pad widths for another number of axes than the array has (a colour image's channels)"
+
+
+def _pad_pairs(fn, line: int, pairs: int, axes: int) -> Form | None:
+    """np.pad refusing its pad widths: NumPy's message counts them (``(2,2)``: two (before, after) pairs) and
+    the array's axes (``requested shape (3,2)``); the call on the raising line says which."""
+    for call in _every_call_on_line(fn, line):
+        if _called(call) != "pad" or len(call.args) < 2 and not call.keywords:
+            continue
+        widths = call.args[1] if len(call.args) > 1 else next((k.value for k in call.keywords if k.arg == "pad_width"), None)
+        if widths is None:
+            continue
+        colour = " (a colour image: its channel axis needs its `(0, 0)` too)" if axes == 3 and pairs == 2 else ""
+        return Form(measured(f"your `{fn.name}` gives `np.pad` the widths `{_short(ast.unparse(widths), 40)}`, "
+                             f"{pairs} (before, after) pairs, for an array of {axes} axes{colour} (line {line}): "
+                             "np.pad takes one pair per axis"), PAD_PAIRS)
+    return None
+
+
+_FLOAT_SIZE = re.compile(r"'(?:numpy\.)?float\w*' object cannot be interpreted as an integer")
+FLOAT_SIZE = "a size computed as a float (np.floor, np.ceil, a division) given where a whole number belongs"
+_FLOATING = frozenset({"floor", "ceil", "round", "rint", "trunc", "fix", "around"})
+
+
+_WHOLE_MAKING = frozenset({"int", "round", "len", "math.floor", "math.ceil", "math.trunc"})
+
+
+def _outside_whole(value):
+    """The nodes of ``value`` not inside a call that makes a whole number (`int(...)`, Python's `round`, `len`)."""
+    stack = [value]
+    while stack:
+        node = stack.pop()
+        yield node
+        if not (isinstance(node, ast.Call) and _path(node.func) in _WHOLE_MAKING):
+            stack.extend(reversed(list(ast.iter_child_nodes(node))))   # (in the order written)
+
+
+def _floating(value) -> bool:
+    """Whether an expression gives a float however whole its value: np.floor/np.ceil/np.round (float arrays and
+    NumPy floats), a true division, float()."""
+    for node in _outside_whole(value):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div):
+            return True
+        if isinstance(node, ast.Call) and (_called(node) in _FLOATING and _path(node.func).startswith(("np.", "numpy."))
+                                           or _path(node.func) == "float"):
+            return True
+    return False
+
+
+def _float_size(fn, line: int) -> Form | None:
+    """A call on the raising line given, as a size, a name the function bound to a float (`height = bottom - top
+    + 1` with `bottom = np.ceil(...)`): followed back through the names it is computed from."""
+    def made_float(name: str, seen: set) -> int | None:
+        if name in seen:
+            return None
+        seen.add(name)
+        for node in sorted(_assignments(fn, name, line), key=lambda n: -getattr(n, "lineno", 0)):
+            value = _bound_value(node, name)
+            if value is None:
+                continue
+            if _floating(value):
+                return node.lineno
+            for inner in _outside_whole(value):
+                if isinstance(inner, ast.Name) and isinstance(inner.ctx, ast.Load):
+                    found = made_float(inner.id, seen)
+                    if found is not None:
+                        return found
+            return None
+        return None
+
+    for call in _every_call_on_line(fn, line):
+        for argument in list(call.args) + [k.value for k in call.keywords]:
+            for name in (n for n in _outside_whole(argument) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)):
+                made = made_float(name.id, set())
+                if made is not None:
+                    return Form(measured(
+                        f"your `{fn.name}` gives `{_short(ast.unparse(call), 50)}` (line {line}) `{name.id}`, a float: "
+                        f"it is computed from a float (line {made}; np.floor, np.ceil and np.round give floats, as a "
+                        f"division does), where a whole number belongs: make it one (`int(...)`)"), FLOAT_SIZE)
+    return None
+
+
+def _bound_value(node, name: str):
+    """The expression ``node`` (an assignment) binds ``name`` to: the matching item of a tuple unpacked from a
+    tuple written out (`w, h = a - b, c - d`), else the whole value."""
+    if isinstance(node, ast.Assign):
+        for target in node.targets:
+            if isinstance(target, ast.Name) and target.id == name:
+                return node.value
+            if isinstance(target, (ast.Tuple, ast.List)) and isinstance(node.value, (ast.Tuple, ast.List)) \
+                    and len(target.elts) == len(node.value.elts):
+                for part, value in zip(target.elts, node.value.elts):
+                    if isinstance(part, ast.Name) and part.id == name:
+                        return value
+            if isinstance(target, (ast.Tuple, ast.List)):
+                return node.value
+    if isinstance(node, (ast.AugAssign, ast.AnnAssign)) and node.value is not None:
+        return node.value
+    return None
+
+
+_SCALAR_WRITTEN = re.compile(r"'numpy\.\w+' object does not support item assignment")
+SCALAR_WRITTEN = "an entry written into a NumPy scalar (arithmetic on a single value gives a number, not an array)"
+
+
+def _scalar_written(fn, line: int) -> Form | None:
+    """An entry written (`depth[~valid] = 0`) into a name the function computed by arithmetic: given a single value
+    (a float, a 0-d array), NumPy's arithmetic gives a scalar, which has no entries to write."""
+    for node in _own_nodes(fn):
+        if not (isinstance(node, (ast.Assign, ast.AugAssign)) and node.lineno <= line <= getattr(node, "end_lineno", node.lineno)):
+            continue
+        targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+        for target in targets:
+            if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name):
+                name = target.value.id
+                made = [a for a in _assignments(fn, name, line) if isinstance(_bound_value(a, name), (ast.BinOp, ast.UnaryOp))]
+                if made:
+                    return Form(measured(
+                        f"your `{fn.name}` writes into `{name}` (line {line}), which it computes by arithmetic "
+                        f"(line {made[-1].lineno}): given a single value (a number, a 0-d array) that arithmetic gives a "
+                        f"NumPy scalar, not an array, and a scalar has no entries to write: make it an array first "
+                        f"(`np.asarray(..., dtype=float)`) or compute it with `np.where`"), SCALAR_WRITTEN)
+    return None
 
 
 _ZERO_DIVISION = re.compile(r"(?:division|modulo) by zero")
@@ -601,6 +734,11 @@ def _one_appended(solved, parents) -> bool:
         return len(values) == 1 and isinstance(values[0], ast.Constant) and type(values[0].value) in (int, float) \
             and values[0].value == 1
     return len(after) == 1 and one(after[0])
+
+
+def _every_call_on_line(fn, line: int) -> list[ast.Call]:
+    return [node for node in _own_nodes(fn) if isinstance(node, ast.Call)
+            and node.lineno <= line <= getattr(node, "end_lineno", node.lineno)]
 
 
 def _calls_on_line(fn, line: int) -> list[ast.Call]:

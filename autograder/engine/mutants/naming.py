@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...loading.parsing import parse
+from ...loading.parsing import compile_source, parse
 from ...sandbox import evidence
 from ..inplace import MISTAKE as IN_PLACE
 from .helper import ERROR, Helper, HelperFailed
@@ -779,7 +779,7 @@ def _pace_work() -> None:
     source = "\n".join(f"def f{i}(x, y):\n    z = x * {i} + y\n    return [v for v in range(3) if v != z]\n"
                        for i in range(40))
     namespace: dict = {}
-    exec(compile(ast.parse(source), "<pace>", "exec"), namespace)
+    exec(compile_source(parse(source, "<pace>", max_chars=None, max_statements=None), "<pace>"), namespace)
     sum(len(namespace[f"f{i}"](i, 1)) for i in range(40) for _ in range(60))
     a = np.linspace(0.0, 1.0, 64 * 64).reshape(64, 64)
     for _ in range(180):
