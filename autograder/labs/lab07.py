@@ -776,13 +776,18 @@ def judge_lstsq(t: Trial, src, dst, least_squares, show=False):
 _EXACT_FITS = ("affine_from_points", "getAffineTransform")   # three-point fits
 
 
-@ex6.check("affine_lstsq on exact correspondences (N=3 and N=12)", points=3)
+@ex6.check("affine_lstsq on exact correspondences (N=3 and N=12; in pixels and in small units)", points=3)
 def lstsq_exact(t):
     rng = np.random.default_rng(7)
     A = truth.random_affine(rng)
     for n in (3, 12):
         src = rng.uniform(0, 400, size=(n, 2))
         judge_lstsq(t, src, truth.apply_affine(A, src), A)
+    # (points in other units -- metres, a few centimetres apart -- are points like any others:
+    # a test of collinearity against a fixed number, det(M^T M) < 1e-6, refuses them)
+    small = A * [1.0, 1.0, 1e-3]
+    src = rng.uniform(0, 0.05, size=(8, 2))
+    judge_lstsq(t, src, truth.apply_affine(small, src), small)
 
 
 @ex6.check("affine_lstsq is the least-squares fit to noisy points", points=4)

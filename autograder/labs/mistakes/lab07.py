@@ -3,7 +3,15 @@ reference solution with one function redefined, the exercise it must lose points
 the words its diagnosis must contain (read by ``autograder verify``; see
 :mod:`autograder.labs.mistakes`)."""
 
+from . import reference_def_with
+
 MISTAKES = {
+    # the blind set 1205h's 07/01: collinearity tested against a fixed number (det(M^T M) shrinks with the 8th power
+    # of the points' spread: points a few centimetres apart are refused)
+    "affine_lstsq refusing points of small coordinates as collinear": ("lab07.ex6", reference_def_with(
+        "lab07_transformations", "affine_lstsq", "params, *_ = np.linalg.lstsq(M, b, rcond=None)",
+        "if abs(np.linalg.det(M.T @ M)) < 1e-6:\n    raise ValueError('source points are collinear')\n"
+        "params, *_ = np.linalg.lstsq(M, b, rcond=None)"), ["`abs(np.linalg.det(M.T @ M)) < 1e-06`"]),
     # the API's rule: a function that takes an image returns its channel count (shapes named by
     # autograder.engine.forms); a grey image made BGR to "see it in colour", a colour one made grey
     # the blind set 1204b's 07/08: the 1 in the rows' first column, the unknowns read as [x, y, 1]
