@@ -50,6 +50,11 @@ _COMPOSE_FEATHERED = """
         """
 
 MISTAKES = {
+    # the blind set 1205h's 08/01: Lowe's test as a ratio divides by a second distance of 0 (a patch repeated exactly)
+    "match_features writing Lowe's test as a ratio of the distances": ("lab08.ex3", reference_def_with(
+        "lab08_homographies", "_match", "if best.distance < ratio * second.distance]",
+        "if best.distance / second.distance < ratio]"),
+        ["changing `best.distance / second.distance < ratio` to `best.distance < ratio * second.distance`"]),
     # the blind set 1204c's 08/05: the lines drawn on the canvas, the circles on its copy, and the copy returned
     "draw_matches drawing the lines on the canvas it does not return": ("lab08.ex3", """
         def draw_matches(img1, img2, pts1, pts2):
