@@ -844,7 +844,9 @@ def draw_full_width(t):
         [-0.6, 1.0, 10.0],        # 31 degrees
         [3.0, -1.0, -200.0],      # steep
         [-1.0, -0.05, 120.0],     # nearly vertical
-    ]))
+        [119.0, -100.0, 0.0],     # through the top-left corner (0, 0), out through the bottom at x = 100
+        [119.0, 99.0, -18921.0],  # through the top-right corner (159, 0), out through the bottom at x = 60
+    ]))   # (a line through a corner meets two borders there: its end points are that corner and the other end)
     got = t.call("draw_epipolar_lines", image, lines)
     what = "draw_epipolar_lines(grey image, lines)"
     if isinstance(got, np.ndarray) and got.ndim in (2, 3):

@@ -45,6 +45,31 @@ _WITHOUT_K = _MATCHED + """            inliers = mask.ravel().astype(bool)
 """
 
 MISTAKES = {
+    # the blind set 1205h's 11/03: a line drawn between the first two border crossings found -- a line through a
+    # corner meets two borders there, and is drawn as one pixel
+    "draw_epipolar_lines joining the first two border crossings": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            out = np.array(image, dtype=np.uint8, copy=True)
+            h, w = out.shape[:2]
+            for i, (a, b, c) in enumerate(np.asarray(lines, dtype=np.float64).reshape(-1, 3)):
+                ends = []
+                if b != 0:
+                    for x in (0.0, w - 1.0):
+                        y = -(a * x + c) / b
+                        if 0.0 <= y <= h - 1.0:
+                            ends.append((x, y))
+                if a != 0:
+                    for y in (0.0, h - 1.0):
+                        x = -(b * y + c) / a
+                        if 0.0 <= x <= w - 1.0:
+                            ends.append((x, y))
+                if len(ends) < 2:
+                    continue
+                (x0, y0), (x1, y1) = ends[0], ends[1]
+                colour = _PALETTE[i % len(_PALETTE)] if out.ndim == 3 else 255
+                cv2.line(out, (int(round(x0)), int(round(y0))), (int(round(x1)), int(round(y1))), colour, 1, cv2.LINE_8)
+            return out
+        """, ["changing `(ends[0], ends[1])` to `(ends[0], ends[-1])`"]),
     # the blind set 1205b's 11/06: image 2's conversion tested on image 1's channels (the line above copied)
     "epipoles from a basis of the range (scipy.linalg.orth) where the null space belongs": ("lab11.ex5", """
         def epipoles(F):
