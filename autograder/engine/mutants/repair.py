@@ -3362,7 +3362,7 @@ FIXES = 3         # the most fixes told (one per line)
 # changes the student's code itself points at -- a line copied from its twin's with one name left, a step
 # done to one of two like inputs or twin terms only -- tried before every other kind's first
 # (and an OpenCV 0/1 mask used as an index, known by its name: a slow pipeline's search reaches it first)
-SHOWN_BY_THE_CODE = {"mirror", "sibling_step", "twin_step", "boolean_mask", "derived_name", "measure_first", "identity",
+SHOWN_BY_THE_CODE = {"mirror", "clip_range", "sibling_step", "twin_step", "boolean_mask", "derived_name", "measure_first", "identity",
                      "first_term", "own_values", "estimator", "unused_name"}
 REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "extra_step", "unwrap", "drop_conversion",
             "drop_mask", "drop_slice", "neutral", "drop_epsilon"}   # changes that take a step out

@@ -50,6 +50,11 @@ _COMPOSE_FEATHERED = """
         """
 
 MISTAKES = {
+    # the blind set 1205h's 08/03: the collapsed pyramid min-max stretched to 0..255 where it belongs clipped
+    "blend_multiband stretching the blend to 0..255 instead of clipping it": ("lab08.ext3", reference_def_with(
+        "lab08_homographies", "blend_multiband", "return np.clip(np.round(result), 0, 255).astype(np.uint8)",
+        "result = cv2.normalize(result, None, 0, 255, cv2.NORM_MINMAX)\nreturn np.round(result).astype(np.uint8)"),
+        ["to `np.clip(result, 0, 255)`"]),
     # the blind set 1205h's 08/01: Lowe's test as a ratio divides by a second distance of 0 (a patch repeated exactly)
     "match_features writing Lowe's test as a ratio of the distances": ("lab08.ex3", reference_def_with(
         "lab08_homographies", "_match", "if best.distance < ratio * second.distance]",
