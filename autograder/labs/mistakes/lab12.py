@@ -158,6 +158,12 @@ MISTAKES = {
             shifts = np.arange(n_bits - 1, -1, -1)[:, None]
             return (((gray[None, :] >> shifts) & 1) * 255).astype(np.uint8)
         """, ["the stripe index is one too large"]),
+    # the blind set 1205h's 12/04: rows made least significant bit first, then the columns reversed (fliplr)
+    # where the rows' order belongs (flipud)
+    "gray_code_patterns reversing the columns where the rows belong": ("lab12.ex6", reference_def_with(
+        "lab12_stereo", "gray_code_patterns", "return (((gray[None, :] >> shifts) & 1) * 255).astype(np.uint8)",
+        "bits = ((gray[None, :] >> shifts[::-1]) & 1) * 255\nreturn np.fliplr(bits).astype(np.uint8)"),
+        ["changing `np.fliplr(bits)` to `np.flipud(bits)`"]),
     # the blind set 1205h's 12/01: scipy's box filter given one size averages the (D, H, W) volume across its
     # disparities too
     "block_matching box-filtering the cost volume along the disparities too": ("lab12.ex4", """
