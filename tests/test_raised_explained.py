@@ -588,3 +588,19 @@ def test_an_entry_written_into_arithmetic_of_a_single_value_is_told():
     form = _raised_at(source, 7, message)
     assert form is not None and "writes into `depth` (line 7), which it computes by arithmetic (line 6)" in form.sentence
     assert _raised_at(source.replace("depth = 2.0 * 3.0 / d", "depth = np.zeros(3)"), 7, message) is None
+
+
+def test_a_name_numpy_2_removed_is_told_at_its_line_with_its_replacement():
+    """`np.array(..., dtype=np.float_)` under NumPy 2 (the blind set 1205h's 07/03): the use is told with the name
+    NumPy's message gives instead; a message about another name is not."""
+    source = """
+        import numpy as np
+
+        def f(tx):
+            return np.array([[1, 0, tx], [0, 1, 0]], dtype=np.float_)
+        """
+    message = "`np.float_` was removed in the NumPy 2.0 release. Use `np.float64` instead."
+    form = _raised_at(source, 5, message)
+    assert form is not None and "uses `np.float_` (line 5)" in form.sentence and "write `np.float64`" in form.sentence
+    other = "`np.int0` was removed in the NumPy 2.0 release. Use `np.intp` instead."
+    assert _raised_at(source, 5, other) is None

@@ -159,6 +159,9 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     found = _UNBOUND.search(message)
     if found:
         return _local_read_first(fn, line, found.group(1) or found.group(2))
+    found = _REMOVED.search(message)
+    if found:
+        return _removed_name(fn, line, found.group(1), found.group(2))
     found = _PAD_PAIRS.search(message)
     if found:
         return _pad_pairs(fn, line, *map(int, found.groups()))
@@ -344,6 +347,20 @@ def _local_read_first(fn, line: int, name: str) -> Form | None:
                          f"as the function's own name everywhere in it -- a module-level `{name}` is not read there -- "
                          f"and on this call no assignment of it had run when line {line} read it: assign it on every "
                          f"path before it is read (or give the module's one another name)"), UNBOUND)
+
+
+_REMOVED = re.compile(r"`np\.(\w+)` was removed in the NumPy 2\.0 release\.\s*(?:Use|use) `([^`]+)` instead")
+REMOVED_NAME = "a NumPy name removed in NumPy 2.0 (np.float_, np.int0, ...) used"
+
+
+def _removed_name(fn, line: int, name: str, instead: str) -> Form | None:
+    """``np.<name>`` on the raising line, which NumPy 2.0 removed (its message says what replaces it)."""
+    for node in _own_nodes(fn):
+        if isinstance(node, ast.Attribute) and node.attr == name and _path(node.value) in ("np", "numpy") \
+                and node.lineno <= line <= getattr(node, "end_lineno", node.lineno):
+            return Form(measured(f"your `{fn.name}` uses `{ast.unparse(node)}` (line {line}), a name NumPy 2.0 "
+                                 f"removed (the grading's NumPy is {np.__version__}): write `{instead}`"), REMOVED_NAME)
+    return None
 
 
 _PAD_PAIRS = re.compile(r"remapped shapes \[original->remapped\]: \((\d+),\s*2\)\s+and requested shape \((\d+),\s*2\)")
