@@ -76,6 +76,7 @@ OPERATORS = {
     "unpack_pair": ("unpack", "pair", "tuple"),                 # (student only) X = f(p) -> X, _ = f(p)
     "source_names": ("source", "scaled", "distorted", "before"),
     "tile_repeat": ("tile", "repeat", "order", "pair"),
+    "row_kron": ("kron", "row", "pair", "every"),          # (student only) np.kron(a, b) of two point arrays -> one row per pair
     "flip_axis": ("flip", "mirror", "axis", "rows"),          # (student only) np.fliplr(x) <-> np.flipud(x), cv2.flip(x, 0) <-> 1
     "clip_range": ("clip", "range", "stretch", "normali"),    # (student only) cv2.normalize(x, None, 0, 255, NORM_MINMAX) -> np.clip(x, 0, 255)
     "cross_multiply": ("ratio", "divid", "zero", "product"),   # (student only) a / b < r -> a < r * b
@@ -1043,6 +1044,15 @@ def _make_compare(node, payload):
     return new
 
 
+def _make_row_kron(node, payload):
+    first, second = node.args   # np.kron(a, b) -> (a[:, :, None] * b[:, None, :]).reshape(len(a), -1): row i's kron only
+    outer = ast.BinOp(ast.Subscript(copy.deepcopy(first), parse("x[:, :, None]", mode="eval").body.slice, ast.Load()),
+                      ast.Mult(),
+                      ast.Subscript(copy.deepcopy(second), parse("x[:, None, :]", mode="eval").body.slice, ast.Load()))
+    return ast.Call(ast.Attribute(outer, "reshape", ast.Load()),
+                    [ast.Call(ast.Name("len", ast.Load()), [copy.deepcopy(first)], []), ast.Constant(-1)], [])
+
+
 _FLIPS = {"fliplr": "flipud", "flipud": "fliplr"}
 
 
@@ -1751,7 +1761,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
-         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "source_names": _make_source_names, "tile_repeat": _make_tile_repeat, "square_window": _make_square_window, "stack_window": _make_stack_window, "cross_multiply": _make_cross_multiply, "clip_range": _make_clip_range, "flip_axis": _make_flip_axis, "math_numpy": _make_math_numpy, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "source_names": _make_source_names, "tile_repeat": _make_tile_repeat, "square_window": _make_square_window, "stack_window": _make_stack_window, "cross_multiply": _make_cross_multiply, "clip_range": _make_clip_range, "flip_axis": _make_flip_axis, "row_kron": _make_row_kron, "math_numpy": _make_math_numpy, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -2677,6 +2687,11 @@ def _changes(node, parents, words: _Words, line):
             yield from _counted_loop_changes(loop)
     if words.student and isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name):
         yield from _index_of_the_loop(node, parents)
+    if words.student and isinstance(node, ast.Call) and _dotted(node.func) in ("np.kron", "numpy.kron") \
+            and len(node.args) == 2 and all(isinstance(a, ast.Name) for a in node.args) and not node.keywords:
+        # (the student's code only: the Kronecker product of two whole arrays of points is one row for every pair
+        # of points, N^2 rows, where one row per correspondence, each point's with its match's, belongs)
+        yield "row_kron", None, ""
     if words.student:
         yield from _flips(node)   # (the student's code only: rows reversed where columns belong, or the other way)
     if words.student and _stretched_range(node) is not None:

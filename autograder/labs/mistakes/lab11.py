@@ -45,6 +45,10 @@ _WITHOUT_K = _MATCHED + """            inliers = mask.ravel().astype(bool)
 """
 
 MISTAKES = {
+    # the blind set 1205h's 11/01: np.kron of the two whole point arrays: a row for every pair of points (N^2 rows)
+    "fundamental_8point building A with np.kron of the whole point arrays": ("lab11.ex4", reference_def_with(
+        "lab11_two_view", "_eight_point_core", "A = (x2[:, :, None] * x1[:, None, :]).reshape(len(x1), 9)",
+        "A = np.kron(x2, x1)"), ["changing `np.kron(x2, x1)` to `(x2[:, :, None] * x1[:, None, :]).reshape(len(x2), -1)`"]),
     # the blind set 1205h's 11/03: a line drawn between the first two border crossings found -- a line through a
     # corner meets two borders there, and is drawn as one pixel
     "draw_epipolar_lines joining the first two border crossings": ("lab11.ex2", """
