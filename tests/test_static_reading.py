@@ -1701,3 +1701,21 @@ def test_rows_of_np_empty_filled_outside_the_loop_and_a_scale_fixed_after_are_no
     assert one(scaled.format(fixed="pass")) == {"a whole row's norm where the block's row's belongs"}
     assert not one(scaled.format(fixed="K = K / K[2, 2]"))
     assert not one(scaled.format(fixed="K /= K[-1, -1]"))
+
+
+def test_a_binary_search_of_the_gray_codes_in_stripe_order_is_read():
+    """`np.searchsorted(codes, g)` with `codes = k ^ (k >> 1)` (the blind set 1205h's 12/03): the table is not
+    sorted. A sorted table, or a search given its sorter, is not read."""
+    source = """
+        import numpy as np
+
+        def decode(g, n_bits):
+            stripes = np.arange(2 ** n_bits)
+            codes = {table}
+            return np.searchsorted(codes, g{sorter})
+        """
+    assert one(source.format(table="stripes ^ (stripes >> 1)", sorter="")) == {
+        "a binary search (np.searchsorted) of a table that is not sorted"}
+    assert not one(source.format(table="np.sort(stripes ^ (stripes >> 1))", sorter=""))
+    assert not one(source.format(table="stripes ^ (stripes >> 1)", sorter=", sorter=np.argsort(codes)"))
+    assert not one(source.format(table="stripes * 2", sorter=""))

@@ -249,6 +249,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _safely(_alias_changed, name, function)
     found += _safely(_kept_alias_rewritten, name, function)
     found += _safely(_chained_one_array, name, function)
+    found += _safely(_searched_unsorted, name, function)
     found += _safely(_late_bound_lambda, name, function)
     found += _safely(_empty_rows_skipped, name, function)
     found += _safely(_views_merged, name, function)
@@ -1617,6 +1618,45 @@ def _chained_one_array(name, function) -> list[Finding]:
                             f"chained assignment gives one array two names, so what is written into `{second}` "
                             f"(line {_line(written[second])}) is written into `{first}` too; make each its own "
                             f"(`{first} = ...` and `{second} = ...` on lines of their own)", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ a binary search of a table not sorted
+def _gray_encoded(value) -> bool:
+    """``k ^ (k >> 1)`` somewhere in ``value``: Gray codes, a table of stripes' codes in stripe order."""
+    for n in ast.walk(value):
+        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.BitXor):
+            for one, other in ((n.left, n.right), (n.right, n.left)):
+                if isinstance(other, ast.BinOp) and isinstance(other.op, ast.RShift) \
+                        and ast.dump(other.left) == ast.dump(one):
+                    return True
+    return False
+
+
+def _searched_unsorted(name, function) -> list[Finding]:
+    """``np.searchsorted(codes, g)`` with ``codes = k ^ (k >> 1)``: a binary search finds a value's place only in
+    a sorted array, and the Gray codes in stripe order are not sorted (0, 1, 3, 2, 6, ...), so most values are
+    answered with another index than theirs."""
+    made = _assigned_names(function)
+    for n in _nodes(function):
+        if not (isinstance(n, ast.Call) and _dotted_name(n.func) in ("np.searchsorted", "numpy.searchsorted")
+                and n.args and isinstance(n.args[0], ast.Name) and not any(k.arg == "sorter" for k in n.keywords)):
+            continue
+        table = n.args[0].id
+        values = made.get(table, ())
+        value = values[0] if len(values) == 1 else _UNKNOWN
+        # (the table as the XOR made it, or a list of it -- not sorted after: np.sort(...), codes.sort())
+        made_as_is = isinstance(value, ast.BinOp) or (isinstance(value, (ast.ListComp, ast.Call)) and not (
+            isinstance(value, ast.Call) and _dotted_name(value.func).rsplit(".", 1)[-1] in ("sort", "sorted", "unique")))
+        sorted_later = any(isinstance(m, ast.Call) and isinstance(m.func, ast.Attribute) and m.func.attr == "sort"
+                           and isinstance(m.func.value, ast.Name) and m.func.value.id == table for m in _nodes(function))
+        if value is not _UNKNOWN and made_as_is and not sorted_later and _gray_encoded(value):
+            return [Finding(name, _line(n), "a binary search (np.searchsorted) of a table that is not sorted",
+                            f"{name} looks values up with `{ast.unparse(n)[:70]}` (line {_line(n)}), a binary search, "
+                            f"in `{table}`, the Gray codes in stripe order ({ast.unparse(values[0])[:40]}), which are "
+                            "not sorted (0, 1, 3, 2, 6, 7, 5, 4, ...): it answers most codes with another stripe's "
+                            f"index; invert the table instead (`index[{table}] = np.arange(len({table}))`, then "
+                            "`index[g]`) or decode the bits by XOR", certain=True)]
     return []
 
 
