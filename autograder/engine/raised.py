@@ -349,8 +349,8 @@ def _local_read_first(fn, line: int, name: str) -> Form | None:
                          f"path before it is read (or give the module's one another name)"), UNBOUND)
 
 
-_REMOVED = re.compile(r"`np\.(\w+)` was removed in the NumPy 2\.0 release\.\s*(?:Use|use) `([^`]+)` instead")
-REMOVED_NAME = "a NumPy name removed in NumPy 2.0 (np.float_, np.int0, ...) used"
+_REMOVED = re.compile(r"`np\.(\w+)` was removed in the NumPy 2\.0 release\.\s*\w+ `([^`]+)` instead")
+REMOVED_NAME = "a name NumPy 2.0 removed"
 
 
 def _removed_name(fn, line: int, name: str, instead: str) -> Form | None:
@@ -364,7 +364,7 @@ def _removed_name(fn, line: int, name: str, instead: str) -> Form | None:
 
 
 _PAD_PAIRS = re.compile(r"remapped shapes \[original->remapped\]: \((\d+),\s*2\)\s+and requested shape \((\d+),\s*2\)")
-PAD_PAIRS = "np.pad given pad widths for another number of axes than the array has (a colour image's channels)"
+PAD_PAIRS = "pad widths given for another number of axes than the array has (a colour image's channels)"
 
 
 def _pad_pairs(fn, line: int, pairs: int, axes: int) -> Form | None:
@@ -384,7 +384,7 @@ def _pad_pairs(fn, line: int, pairs: int, axes: int) -> Form | None:
 
 
 _FLOAT_SIZE = re.compile(r"'(?:numpy\.)?float\w*' object cannot be interpreted as an integer")
-FLOAT_SIZE = "a size computed as a float (np.floor, np.ceil, a division) given where a whole number belongs"
+FLOAT_SIZE = "a size computed as a float (rounded by NumPy, or divided) given where a whole number belongs"
 _FLOATING = frozenset({"floor", "ceil", "round", "rint", "trunc", "fix", "around"})
 
 

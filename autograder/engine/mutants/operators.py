@@ -1170,8 +1170,6 @@ def _make_twin_argument(node, payload):
 
 
 def _make_measure(node, payload):
-    if payload == "depth":   # np.linalg.norm(X, axis=1) -> X[:, 2]: a 3D point's depth where its distance is taken
-        return ast.Subscript(copy.deepcopy(node.args[0]), ast.Tuple([ast.Slice(), ast.Constant(2)], ast.Load()), ast.Load())
     if payload == "sqrt":   # np.sum(d ** 2, axis=1) -> np.sqrt(np.sum(d ** 2, axis=1))
         return ast.Call(_name("np.sqrt"), [copy.deepcopy(node)], [])
     if payload == "abs_inside":   # np.sum(l - r) -> np.sum(np.abs(l - r))
@@ -3634,10 +3632,6 @@ def _student_changes(node, parent, parents, words):
     yield from _measure_changes(node)
     if isinstance(parent, ast.Assign) and parent.value is node and _sum_of_squares(node):
         yield "measure", "sqrt", ""   # `r = x ** 2 + y ** 2` where the radius, its root, belongs
-    if isinstance(node, ast.Call) and _dotted(node.func).endswith("linalg.norm") and len(node.args) == 1 \
-            and isinstance(node.args[0], ast.Name) \
-            and any(k.arg == "axis" and isinstance(k.value, ast.Constant) and k.value.value in (1, -1) for k in node.keywords):
-        yield "measure", "depth", ""   # each point's distance where its depth Z belongs: `1 + f / norm(X)`
     if isinstance(node, ast.Slice):
         # (in a write, one entry where a slice runs on is the slice item's change, `M[0, 1] = s`: not told twice)
         subscript = parent if isinstance(parent, ast.Subscript) else parents.get(id(parent), (None,))[0]
@@ -4647,8 +4641,13 @@ def _logic_changes(node, parent, parents):
         yield "carry", running, ""
     for mean in _summaries(node, parents):
         yield "summary", mean, ""
-    for part in _parts(node, parents):
+    parts = list(_parts(node, parents))
+    for part in parts:
         yield "part", part, ""
+    if not parts and isinstance(node, ast.Call) and _dotted(node.func).endswith("linalg.norm") and len(node.args) == 1 \
+            and isinstance(node.args[0], ast.Name) \
+            and any(k.arg == "axis" and isinstance(k.value, ast.Constant) and k.value.value in (1, -1) for k in node.keywords):
+        yield "part", f"{node.args[0].id}[:, 2]", ""   # each point's distance where its depth Z belongs: `1 + f / norm(X)`
     if isinstance(node, ast.Call) and node.args and _dotted(node.func).rsplit(".", 1)[-1] in _EXTREMES \
             and not (isinstance(node.args[0], ast.Call) and _dotted(node.args[0].func).rsplit(".", 1)[-1] in _MAGNITUDES):
         yield "magnitude", None, ""   # the smallest value where the smallest magnitude belongs (an eigenvalue)
