@@ -604,3 +604,15 @@ def test_a_name_numpy_2_removed_is_told_at_its_line_with_its_replacement():
     assert form is not None and "uses `np.float_` (line 5)" in form.sentence and "write `np.float64`" in form.sentence
     other = "`np.int0` was removed in the NumPy 2.0 release. Use `np.intp` instead."
     assert _raised_at(source, 5, other) is None
+
+
+def test_a_float_that_is_no_size_is_not_told_as_one():
+    """`np.full((h, w), mean / 2)`: the fill value may be a float; only the shape's names are followed."""
+    source = """
+        import numpy as np
+
+        def f(img, h, w):
+            mean = img.sum() / img.size
+            return np.full((h, w), mean / 2)
+        """
+    assert _raised_at(source, 6, "'numpy.float64' object cannot be interpreted as an integer", (None, 1, 2)) is None

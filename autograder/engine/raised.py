@@ -371,7 +371,7 @@ def _pad_pairs(fn, line: int, pairs: int, axes: int) -> Form | None:
     """np.pad refusing its pad widths: NumPy's message counts them (``(2,2)``: two (before, after) pairs) and
     the array's axes (``requested shape (3,2)``); the call on the raising line says which."""
     for call in _every_call_on_line(fn, line):
-        if _called(call) != "pad" or len(call.args) < 2 and not call.keywords:
+        if _called(call) != "pad" or (len(call.args) < 2 and not call.keywords):
             continue
         widths = call.args[1] if len(call.args) > 1 else next((k.value for k in call.keywords if k.arg == "pad_width"), None)
         if widths is None:
@@ -413,11 +413,30 @@ def _floating(value) -> bool:
     return False
 
 
+_SIZED = frozenset({"zeros", "ones", "empty", "full"})   # their first argument (or shape=) is a size
+_COUNTED = frozenset({"range", "reshape", "resize"})      # every argument a whole number (or a tuple of them)
+FOLLOWED = 24   # names followed back from one line at most (each read of a def walks it)
+
+
+def _size_arguments(call: ast.Call) -> list:
+    """The arguments of ``call`` that must be whole numbers: an array's shape, a range's bounds, a reshape's or a
+    resize's sizes (other arguments -- a fill value, a scale factor -- may be floats)."""
+    called = _called(call)
+    if called in _SIZED:
+        return call.args[:1] + [k.value for k in call.keywords if k.arg == "shape"]
+    if called in _COUNTED:
+        return list(call.args) + [k.value for k in call.keywords if k.arg in ("shape", "dsize", "newshape")]
+    return []
+
+
 def _float_size(fn, line: int) -> Form | None:
-    """A call on the raising line given, as a size, a name the function bound to a float (`height = bottom - top
-    + 1` with `bottom = np.ceil(...)`): followed back through the names it is computed from."""
-    def made_float(name: str, seen: set) -> int | None:
-        if name in seen:
+    """A size given on the raising line (an array's shape, a range's bound, a reshape's sizes) that the function
+    bound to a float (`height = bottom - top + 1` with `bottom = np.ceil(...)`): followed back through the names
+    it is computed from, at most :data:`FOLLOWED` of them."""
+    seen: set = set()
+
+    def made_float(name: str) -> int | None:
+        if name in seen or len(seen) >= FOLLOWED:
             return None
         seen.add(name)
         for node in sorted(_assignments(fn, name, line), key=lambda n: -getattr(n, "lineno", 0)):
@@ -426,18 +445,15 @@ def _float_size(fn, line: int) -> Form | None:
                 continue
             if _floating(value):
                 return node.lineno
-            for inner in _outside_whole(value):
-                if isinstance(inner, ast.Name) and isinstance(inner.ctx, ast.Load):
-                    found = made_float(inner.id, seen)
-                    if found is not None:
-                        return found
-            return None
+            names = [inner.id for inner in _outside_whole(value) if isinstance(inner, ast.Name)
+                     and isinstance(inner.ctx, ast.Load)]
+            return next((found for found in map(made_float, names) if found is not None), None)
         return None
 
     for call in _every_call_on_line(fn, line):
-        for argument in list(call.args) + [k.value for k in call.keywords]:
+        for argument in _size_arguments(call):
             for name in (n for n in _outside_whole(argument) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)):
-                made = made_float(name.id, set())
+                made = made_float(name.id)
                 if made is not None:
                     return Form(measured(
                         f"your `{fn.name}` gives `{_short(ast.unparse(call), 50)}` (line {line}) `{name.id}`, a float: "

@@ -1216,14 +1216,18 @@ def aperture_uniform_area(t):
         # (the recipe is told only to code that takes no square root: code that does may draw its radius right
         # and scale it by a blur radius of another size -- the distance |X| where the depth Z belongs)
         rooted = SQRT_RADIUS_HINT.asks.found(code_of(t).reachable(["simulate_aperture"]))
+        farthest = np.max(np.hypot(offsets[..., 0], offsets[..., 1]), axis=1)   # per point, in blur radii
+        if not rooted:
+            after = measured(": one radius and one angle per ray, radius aperture * sqrt(u), fill it evenly.")
+        elif np.abs(farthest - 1).max() > 0.01:
+            after = measured(", and the farthest of each point's rays do not all reach its blur radius "
+                             "aperture * (1 + f / Z).")
+        else:
+            after = "."
         t.advise(f"{what}: " + measured(
             f"{np.mean(r < 0.5):.1%} of the rays land within half the blur radius of the ideal projection, where "
             "points uniform over the pinhole's area put a quarter there (the inner disc's share of the area)")
-            + (measured(": one radius and one angle per ray, radius aperture * sqrt(u), fill it evenly.") if not rooted
-               else measured(", and the farthest of each point's rays do not all reach its blur radius "
-                             "aperture * (1 + f / Z).") if np.abs(np.max(np.hypot(offsets[..., 0], offsets[..., 1]), axis=1)
-                                                                 - 1).max() > 0.01 else ".")
-            + " No points depend on it.")
+            + after + " No points depend on it.")
 
 
 # ================================================================== ex5 points on a real image
