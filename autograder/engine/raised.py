@@ -169,6 +169,8 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
         return _float_size(fn, line)
     if _SCALAR_WRITTEN.search(message):
         return _scalar_written(fn, line)
+    if _MATH_DOMAIN.search(message):
+        return _math_domain(fn, line, _with_defaults(fn, given) if fn.name == function else given)
     if "NoneType" in message:
         return _none_returned(code, fn, line)
     if "OpenCV(" in message:
@@ -537,6 +539,65 @@ def _zero_divisor(fn, line: int, given: dict) -> Form | None:
                                  "multiply first and divide last"), ROUNDED_TO_ZERO)
         return Form(measured(f"{said} ({_values(node.right, known)})"), ZERO_DIVISOR)
     return None
+
+
+# (Python 3.11-3.13 say "math domain error"; 3.14 names the domain)
+_MATH_DOMAIN = re.compile(r"math domain error|expected a (?:positive|nonnegative) input|expected a number in range")
+OUTSIDE_DOMAIN = "a math function given a number outside the numbers it takes"
+# math's functions by what they take, and what to do where a value can reach the edge
+_DOMAINS = {
+    **dict.fromkeys(("log", "log2", "log10"), ("a positive number", "0 or negative",
+                                               "where it can reach 0 (a ratio of 1, say), keep it above 0 or treat "
+                                               "that case apart")),
+    "log1p": ("a number above -1", "-1 or below", "keep it above -1"),
+    "sqrt": ("a number >= 0", "negative", "a rounding error can take a value that is 0 just below it: clip it at 0"),
+    **dict.fromkeys(("acos", "asin"), ("a number from -1 to 1", "outside it",
+                                       "a rounding error can take a cosine just past 1: clip it to [-1, 1]")),
+    "acosh": ("a number >= 1", "below 1", "clip it at 1"),
+    "atanh": ("a number strictly between -1 and 1", "outside it", "keep it inside"),
+}
+
+
+def _math_domain(fn, line: int, given: dict) -> Form | None:
+    """The one call of :mod:`math` on the raising line whose argument can leave what it takes
+    (``math.log(1 - w ** 4)`` with w = 1; ``math.log(1 - confidence)`` beside it is worked out from the
+    numbers given, and takes them): Python's math functions raise there, where NumPy's give nan."""
+    known, _ = _numbers_known(fn, line, given)
+    calls = []
+    for call in _every_call_on_line(fn, line):
+        name = _path(call.func).rsplit(".", 1)[-1]
+        if not (_path(call.func).startswith("math.") and name in _DOMAINS and call.args):
+            continue
+        value = _number(call.args[0], known)
+        if value is None or not _takes(name, value):
+            calls.append((call, name))
+    if len(calls) != 1:
+        return None   # (which of several raised is not known)
+    call, name = calls[0]
+    takes, was, advice = _DOMAINS[name]
+    return Form(from_code(f"your `{fn.name}` calls `{_short(ast.unparse(call), 60)}` (line {line}): math.{name} takes "
+                          f"{takes} only, and `{_short(ast.unparse(call.args[0]), 40)}` was {was} here; {advice}"),
+                OUTSIDE_DOMAIN)
+
+
+def _with_defaults(fn, given: dict) -> dict:
+    """``given`` with the number defaults of ``fn``'s parameters it lacks (for the def called itself: a
+    parameter it lacks was not passed; a helper's may have been passed a value not known)."""
+    positional = [*fn.args.posonlyargs, *fn.args.args]
+    pairs = list(zip(positional[len(positional) - len(fn.args.defaults):], fn.args.defaults)) + [
+        (a, d) for a, d in zip(fn.args.kwonlyargs, fn.args.kw_defaults) if d is not None]
+    defaults = {a.arg: d.value for a, d in pairs if isinstance(d, ast.Constant)
+                and isinstance(d.value, (int, float)) and not isinstance(d.value, bool)}
+    return {**defaults, **given}
+
+
+def _takes(name: str, value) -> bool:
+    """Whether math's ``name`` takes the number ``value``."""
+    try:
+        getattr(math, name)(float(value))
+        return True
+    except (ValueError, TypeError, OverflowError):
+        return False
 
 
 _NEGATIVE_SHIFT = re.compile(r"negative shift count")

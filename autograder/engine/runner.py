@@ -460,7 +460,11 @@ def _named_by_exception(verdict: Verdict, trial: Trial, traceback_text: str) -> 
     not made homogeneous: :func:`autograder.engine.forms.exception_form`; a 1-D vector given by the
     caller joined to a 2-D array in the raising line: :func:`autograder.engine.raised.explained`),
     naming that form; the shapes in the error, and the line with the arguments given, are the evidence."""
-    form = exception_form(str(verdict.message)) or _explained_from_the_line(trial, traceback_text)
+    return _told_exception(verdict, exception_form(str(verdict.message)) or _explained_from_the_line(trial, traceback_text))
+
+
+def _told_exception(verdict: Verdict, form) -> Verdict:
+    """``verdict`` of an exception with the cause ``form`` told after its first line (None: as it was)."""
     if form is None:
         return verdict
     first, newline, rest = str(verdict.message).partition("\n")
@@ -1046,9 +1050,13 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         stale = _named_by_fresh_start(verdict, check, trial)
         inherited, verdict = stale is not verdict, stale
     if student_failure == "exception" and not verdict.mistake and not inherited:
-        # A change of their code confirmed to mend the exception comes before the NumPy forms'
+        # The cause read in the raising line itself (what it was given, what it computes) is certain and
+        # comes first; then a change of their code confirmed to mend the exception (a change that mends the
+        # inputs tried may still be no fix: `log(1 - w)` made `log(1 + w)`), and only then the NumPy forms'
         # reading of its message, which guesses which operand is wrong ("keep it a column").
-        verdict = _named_by_repair(verdict, check, trial, tb)
+        verdict = _told_exception(verdict, _explained_from_the_line(trial, tb))
+        if not verdict.mistake:
+            verdict = _named_by_repair(verdict, check, trial, tb)
     if student_failure == "exception" and not verdict.mistake:
         verdict = _named_by_exception(verdict, trial, tb)
     if status in (FAILED, PARTIAL) and not verdict.mistake and student_failure == "" and not inherited:

@@ -2444,11 +2444,34 @@ def _loop_variable_assigned_in_vain(name, function) -> list[Finding]:
             unchanged = f"{', '.join(f'`{n}`' for n in names)} stay as they were" if names else \
                 "the items looped over stay as they were"
             line = _line(assign)
+            sources = _looped_sources(loop.iter, position, len(targets))
+            if sources and all(last_read.get(source, (0, 0)) <= (loop.end_lineno, loop.end_col_offset)
+                               for source in sources):
+                # (what was looped over is not read after the loop: no change of it was awaited -- the value
+                # itself, made each turn, is what nothing uses)
+                return [Finding(name, line, "a value made in a loop and never used",
+                                f"{name} (line {line}) gives `{variable}` a new value (`{ast.unparse(assign)[:80]}`), "
+                                f"and nothing reads `{variable}` after it, in the loop of line {_line(loop)} or "
+                                f"below: what the loop gives `{variable}` each turn is never used")]
             return [Finding(name, line, "a value assigned to the loop variable and dropped",
                             f"{name} (line {line}) assigns `{ast.unparse(assign)[:80]}` to `{variable}`, the variable of "
                             f"the loop at line {_line(loop)}, and nothing reads it after: the next turn binds "
                             f"`{variable}` again, so the value is dropped and {unchanged}. Keep the results (append them "
                             "to a list, or assign each name on its own line)")]
+    return []
+
+
+def _looped_sources(iterated, position: int, count: int) -> list[str]:
+    """The names whose items a loop variable (the ``position``-th of ``count``) takes: `xs` of `for x in xs`, the
+    `position`-th argument of `zip(...)`, the items of `enumerate(xs)`; [] where they are not names."""
+    if isinstance(iterated, ast.Name) and count == 1:
+        return [iterated.id]
+    if isinstance(iterated, ast.Call) and isinstance(iterated.func, ast.Name) and not iterated.keywords:
+        if iterated.func.id == "zip" and len(iterated.args) == count and isinstance(iterated.args[position], ast.Name):
+            return [iterated.args[position].id]
+        if iterated.func.id == "enumerate" and count == 2 and position == 1 and iterated.args \
+                and isinstance(iterated.args[0], ast.Name):
+            return [iterated.args[0].id]
     return []
 
 

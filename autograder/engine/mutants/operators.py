@@ -2260,6 +2260,40 @@ def _reader_moves(statements, k):
         yield "move", update, statement, "before"
 
 
+def _rebinding_moves(statements, k):
+    """A value read from a name after a fresh value -- not an update of its own -- replaced the one it
+    had before, where the old was meant: `x, y = src[i]` ... `x, y = dst[i]` ... `M[r] = [0, 0, 0, x, y, 1]`
+    moved before the second binding (a student reusing names for the next point too early)."""
+    statement = statements[k]
+    reads = _read(statement)
+    earlier = statements[max(0, k - _MOVE_REACH):k]
+    rebinding = next((s for s in reversed(earlier) if isinstance(s, ast.Assign) and (_assigned(s) & reads) - _read(s)
+                      and _bound_in((_assigned(s) & reads) - _read(s), statements[:statements.index(s)])), None)
+    if rebinding is not None:
+        container = _containers_set(statement)
+        passed = earlier[earlier.index(rebinding):]
+        if not any((_read(s) | _assigned(s)) & container for s in passed) \
+                and not any(_containers_set(s) & reads for s in passed[1:]):
+            yield "move", rebinding, statement, "before"
+
+
+def _bound_in(names: set, statements) -> bool:
+    """Whether any of ``names`` is given a value by one of ``statements`` (simple ones, at their level)."""
+    return any(isinstance(s, (ast.Assign, ast.AugAssign)) and _assigned(s) & names for s in statements)
+
+
+def _containers_set(statement) -> set:
+    """The names an assignment gives a value to or writes into (`M` of `M[2 * i] = ...`; not its index)."""
+    targets = statement.targets if isinstance(statement, ast.Assign) else \
+        [statement.target] if isinstance(statement, ast.AugAssign) else []
+    made = set()
+    for target in targets:
+        while isinstance(target, (ast.Subscript, ast.Attribute)):
+            target = target.value
+        made |= {n.id for n in ast.walk(target) if isinstance(n, ast.Name)}
+    return made
+
+
 def _recurrence_starts(fn):
     """(the number, the text replacing it): a recurrence's first item set to a number (`energy[0] = 0.0`)
     above a loop filling the next items as a term of their own plus the rest (`energy[x] = costs[x] +
@@ -2351,6 +2385,8 @@ def _statement_moves(fn):
                         yield "move", reader, statement, "before"
                 elif isinstance(statement, ast.Assign):
                     yield from _reader_moves(statements, k)
+                if isinstance(statement, ast.Assign):
+                    yield from _rebinding_moves(statements, k)
                 if isinstance(statement, (ast.For, ast.While, ast.If)) and k + 1 < len(statements) \
                         and not isinstance(statement.body[-1], _LEAVES):   # (moved after a `continue`: never run)
                     following = statements[k + 1]
@@ -2593,7 +2629,8 @@ def _changes(node, parents, words: _Words, line):
         inner = what(node.value)
         yield "transpose", "remove", f"{inner} is used untransposed (its transpose belongs there)" if inner else \
             _placed("a transpose is missing", place())
-    if isinstance(node, ast.expr) and (_transposable(node, parent) or (words.student and _cv_points(node, parent))):
+    if isinstance(node, ast.expr) and (_transposable(node, parent) or (words.student and (
+            _cv_points(node, parent) or _matrix_renamed(node, parent)))):
         inner = what(node)
         yield "transpose", "insert", f"{inner} is used transposed" if inner else \
             _placed("a matrix is used transposed", place())
@@ -6926,6 +6963,19 @@ def _transposable(node, parent) -> bool:
     if isinstance(parent, ast.Call) and node in parent.args and _dotted(parent.func).startswith("np.linalg."):
         return True
     return isinstance(parent, ast.Return) and isinstance(node, (ast.Name, ast.Call, ast.BinOp))
+
+
+def _matrix_renamed(node, parent) -> bool:
+    """A student's matrix given its name from another one or from a linear-algebra call
+    (``L = X``, ``W = np.linalg.lstsq(A, B)[0]``): where the result is the transpose of what the
+    name stands for (``lstsq`` solves ``A @ X = B``: one column per output), the ``.T`` belongs there,
+    and no single later use of the name mends every one."""
+    if not (isinstance(parent, ast.Assign) and parent.value is node and len(parent.targets) == 1
+            and isinstance(parent.targets[0], ast.Name)):
+        return False
+    inner = node.value if isinstance(node, ast.Subscript) else node
+    return (isinstance(node, ast.Name) and node.id != parent.targets[0].id) or (
+        isinstance(inner, ast.Call) and _dotted(inner.func).startswith(("np.linalg.", "numpy.linalg.")))
 
 
 # OpenCV functions' point-set arguments (by position), one point per row ((N, 2), (N, 3), (N, 4)); a
