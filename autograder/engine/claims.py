@@ -351,13 +351,16 @@ def _det_sign_test(node, held: set) -> bool:
 
 
 def _negates(statement) -> bool:
-    """``x = -x``, ``x = -1 * x``, ``x = x * -1``, ``x *= -1``, ``x = np.negative(x)``."""
+    """``x = -x``, ``x = -1 * x``, ``x = x * -1``, ``x *= -1``, ``x = np.negative(x)``, ``x, y = -x, -y``."""
     minus_one = _pattern("-1")
     if isinstance(statement, ast.AugAssign) and isinstance(statement.op, ast.Mult):
         return _same(statement.value, minus_one) or _same(statement.value, _pattern("-1.0"))
     if isinstance(statement, ast.Assign):
         value = statement.value
         if isinstance(value, ast.UnaryOp) and isinstance(value.op, ast.USub):
+            return True
+        if isinstance(value, ast.Tuple) and value.elts and all(   # `M, p4 = -M, -p4`
+                isinstance(item, ast.UnaryOp) and isinstance(item.op, ast.USub) for item in value.elts):
             return True
         if isinstance(value, ast.BinOp) and isinstance(value.op, ast.Mult):
             return any(isinstance(side, ast.UnaryOp) and isinstance(side.op, ast.USub)
@@ -369,7 +372,8 @@ def _negates(statement) -> bool:
 
 def _argument_names(function, index: int) -> set[str]:
     """The names holding the function's parameter at ``index``: the parameter and the names bound
-    to a conversion or copy of one of them (``P = np.asarray(P, float)``, ``M = P.copy()``)."""
+    to a conversion or copy of one of them (``P = np.asarray(P, float)``, ``M = P.copy()``), or to a
+    part of one (``M = P[:, :3]``: negating the block is negating P where the block is decomposed)."""
     parameters = function.args.posonlyargs + function.args.args
     if index >= len(parameters):
         return set()
@@ -378,6 +382,8 @@ def _argument_names(function, index: int) -> set[str]:
     def holds(value) -> bool:
         if isinstance(value, ast.Name):
             return value.id in names
+        if isinstance(value, ast.Subscript):
+            return holds(value.value)
         if isinstance(value, ast.Call):
             name = _path(value.func).rsplit(".", 1)[-1]
             if name in ("asarray", "array", "asanyarray", "copy", "astype", "float64", "float32"):
@@ -397,10 +403,10 @@ def _argument_names(function, index: int) -> set[str]:
 
 
 def _bound_names(statement) -> set[str]:
-    """The plain names an assignment binds (``P = ...``, ``P *= -1``)."""
+    """The plain names an assignment binds (``P = ...``, ``P *= -1``, ``M, p = ...``)."""
     targets = statement.targets if isinstance(statement, ast.Assign) else [statement.target] if isinstance(
         statement, ast.AugAssign) else []
-    return {t.id for t in targets if isinstance(t, ast.Name)}
+    return {n.id for t in targets for n in (t.elts if isinstance(t, ast.Tuple) else [t]) if isinstance(n, ast.Name)}
 
 
 def negates_on_negative_det(argument: int | None = None, says: str = "") -> Predicate:

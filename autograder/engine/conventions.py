@@ -266,6 +266,12 @@ def judge_rows(t: Trial, function: str, args: tuple, rows, described: str = ""):
         if not (isinstance(ours, np.ndarray) and ours.ndim >= 1 and len(ours) == n and ours.dtype.kind in "biuf"):
             continue   # not one row per point (a wrong answer for all N is the other checks' to judge)
         name = _name(call, index, len(theirs), given)
+        if isinstance(answer, np.ndarray) and answer.ndim == ours.ndim and len(answer) == 1 \
+                and answer.shape[1:] != ours.shape[1:]:
+            # (one row of another width: which form is right is the other checks' to say, not this one's)
+            t.fail(measured(f"{name} returned shape {answer.shape}, but among {n} points each point's row has shape "
+                            f"{ours.shape[1:]}: the form of a point's answer must not depend on how many points "
+                            "are given"))
         got = t.expect_array(answer, name, shape=ours[:1].shape, kind="biuf")
         if not _close(got, ours[:1]):
             fail_if_answers_drift(t, function, args, many, call)
@@ -310,10 +316,14 @@ def judge_square(t: Trial, function: str, args: tuple, rows, described: str = ""
         # from a formula reading every point -- a mean depth where each point's own belongs)
         # (the rule said is the one the answer breaks: rows for points where its form changed or the code
         # tests the length; else, answers of the right form, a point's own answer, whatever is given beside it)
-        rule = f"{k} points are {k} rows of the answer, whatever a point's number of coordinates" if why or not shaped \
+        # (k rows of another width are k points' answers: their form depends on how many are given, not on the
+        # points taken for one -- an (N, 1) column broadcast against N values gives (N, 2N) for any N)
+        rows_kept = isinstance(answer, np.ndarray) and answer.ndim >= 1 and len(answer) == k
+        taken = why or not (shaped or rows_kept)
+        rule = f"{k} points are {k} rows of the answer, whatever a point's number of coordinates" if taken \
             else "a point's answer must not depend on the other points given with it"
         t.fail(measured(f"{name} returned {shown}, but the same {k} points among {n} give {_first(expected)}: "
-                        f"{rule}.") + why, mistake=SQUARE_TAKEN if why or not shaped else "")
+                        f"{rule}.") + why, mistake=SQUARE_TAKEN if taken else "")
     return passed(f"the first {k} points, as many as a point has coordinates, answered as the same points among {n}")
 
 

@@ -529,6 +529,8 @@ def _make_inverse(node, payload):
         toggled = [copy.deepcopy(f.args[0]) if _is_inverse(f) else _call("np.linalg.inv", copy.deepcopy(f))
                    for f in (first, last)]
         return ast.BinOp(ast.BinOp(toggled[0], ast.MatMult(), copy.deepcopy(middle)), ast.MatMult(), toggled[1])
+    if payload == "entrywise":  # X ** -1, 1 / X -> np.linalg.inv(X)
+        return _call("np.linalg.inv", copy.deepcopy(_reciprocal_of(node)))
     if payload == "wrap":       # X -> np.linalg.inv(X) (the student's code: an inversion missing)
         return _call("np.linalg.inv", copy.deepcopy(node))
     if payload == "insert":     # X.T -> np.linalg.inv(X)
@@ -536,6 +538,23 @@ def _make_inverse(node, payload):
     if payload == "transpose":  # np.linalg.inv(X) -> X.T
         return ast.Attribute(copy.deepcopy(node.args[0]), "T", ast.Load())
     return copy.deepcopy(node.args[0])   # np.linalg.inv(X) -> X
+
+
+def _reciprocal_of(node):
+    """``M`` of ``M ** -1`` or ``1 / M`` (``1.0 / M``) where M is a name, an item or a call; else None."""
+    if not (isinstance(node, ast.BinOp) and isinstance(node.right if isinstance(node.op, ast.Pow) else node.left,
+                                                       (ast.Constant, ast.UnaryOp))):
+        return None
+    if isinstance(node.op, ast.Pow):
+        exponent, matrix = node.right, node.left
+        minus_one = isinstance(exponent, ast.UnaryOp) and isinstance(exponent.op, ast.USub) \
+            and isinstance(exponent.operand, ast.Constant) and exponent.operand.value == 1
+    elif isinstance(node.op, ast.Div):
+        matrix = node.right
+        minus_one = isinstance(node.left, ast.Constant) and node.left.value == 1
+    else:
+        return None
+    return matrix if minus_one and isinstance(matrix, (ast.Name, ast.Subscript, ast.Call)) else None
 
 
 def _make_stack_order(node, payload):
@@ -3498,6 +3517,9 @@ def _student_changes(node, parent, parents, words):
     if isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult) \
             and isinstance(node, (ast.Name, ast.Subscript, ast.Call)) and not _is_inverse(node):
         yield "inverse", "wrap", ""
+    if _reciprocal_of(node) is not None:
+        # each entry's reciprocal where the matrix inverse belongs: `M ** -1`, `1 / M` (the sheet's M^-1)
+        yield "inverse", "entrywise", ""
     if _chain_of_three(node) is not None and not (isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.MatMult)):
         yield "chain_order", "first", ""   # `A @ B @ C` -> `B @ A @ C`
         yield "chain_order", "last", ""    # `A @ B @ C` -> `A @ C @ B` (K2.T @ K1 @ F for K2.T @ F @ K1)
