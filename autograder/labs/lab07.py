@@ -422,8 +422,9 @@ def scale_default(t):
 @ex3.check("scale with whole-number factors (sx=2, sy=1)", points=1)
 def scale_whole_factors(t):
     """The factors are numbers, and a caller's 2 is one: a matrix made from them must still be of floats
-    for cv2.warpAffine (`np.array([[sx, 0, 0], [0, sy, 0]])` of two ints is an integer matrix)."""
-    source = photo("coffee", (200, 150))
+    for cv2.warpAffine (`np.array([[sx, 0, 0], [0, sy, 0]])` of two ints is an integer matrix). And a frame
+    wider than 256 pixels, as photos are: pixel coordinates counted in the image's uint8 wrap round there."""
+    source = photo("coffee", (320, 240))
     return judge_warp(t, "scale(image, sx=2, sy=1)", t.call("scale", source, sx=2, sy=1), source,
                       truth.scaling(2.0, 1.0), truth.scaling_mistakes(2.0, 1.0, source.shape),
                       probe=image_probe(t, "scale"))
@@ -633,15 +634,34 @@ def warp_affine_default(t):
         probe=image_probe(t, "warp_affine"))
 
 
-@ex5.check("warp_affine(grey image, A) keeps a grey image's size too", points=1)
+@ex5.check("warp_affine(grey image, A) keeps a grey image's size too, and vertical stripes shifted down", points=1)
 def warp_affine_grey_default(t):
     """The default size read from a grey (H, W) image as from a colour one (`image.shape[1::-1]` is (W, H)
     for both; a slice counted from the end, `shape[-2::-1]`, is (H,) for a grey one)."""
     source = photo("chelsea", (160, 120), grey=True)
     A = np.array([[0.9, -0.2, 20.0], [0.15, 1.05, -5.0]])
     what = "warp_affine(grey image, A)"
-    return judge_warp(t, what, call_on(t, what, "warp_affine", source, A), source, A, truth.warp_mistakes(A),
-                      probe=image_probe(t, "warp_affine"))
+    verdict = judge_warp(t, what, call_on(t, what, "warp_affine", source, A), source, A, truth.warp_mistakes(A),
+                         probe=image_probe(t, "warp_affine"))
+    if verdict.fraction < 1:
+        return verdict
+    # (a shift along y alone mixes rows only, whatever the interpolation -- nearest, bilinear, bicubic: vertical
+    # stripes stay stripes; an interpolation that weighs with x's fraction where y's belongs mixes columns)
+    # (compared as they are: the comparison of photos blurs, which would wash 2-px stripes out)
+    stripes = np.tile(np.where(np.arange(160) // 2 % 2 == 0, 0, 255).astype(np.uint8), (120, 1))
+    what = "warp_affine(grey vertical stripes 2 px wide, a shift of half a pixel down)"
+    got = t.expect_array(call_on(t, what, "warp_affine", stripes, HALF_PIXEL_DOWN), what, shape=stripes.shape)
+    apart = float(np.abs(got[2:-2].astype(np.float64) - stripes[2:-2]).mean())   # (the rows by the border left out)
+    if apart > STRIPES_KEPT:
+        t.images(what, given=stripes, yours=got)
+        t.fail(measured(f"{what}: a shift along y alone mixes rows only, so each column keeps its one value whatever "
+                        f"the interpolation (nearest, bilinear, bicubic); yours differs from the stripes by {apart:.0f} "
+                        "grey levels on average: it mixes neighbouring columns too"))
+    return verdict
+
+
+HALF_PIXEL_DOWN = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.5]])
+STRIPES_KEPT = 2.0   # grey levels: exact for every interpolation of a shift along y; mixing columns gives ~64
 
 
 @ex5.check("warp_affine with dsize=(width, height)", points=2)

@@ -1443,7 +1443,10 @@ def fundamental_rank2(t):
         if s[2] / s[0] > 1e-7:
             # (what the answer shows, not whether the code has a step for it: one written wrongly leaves rank 3 too)
             t.fail(f"{what} has rank 3 (singular values proportional to (1, {s[1] / s[0]:.3g}, {s[2] / s[0]:.3g})): "
-                   "the F returned is not of rank 2. " + RANK2_HINT.said(t), mistake="rank 2 was not enforced")
+                   "the F returned is not of rank 2. " + RANK2_HINT.said(t),
+                   # (code that sets a singular value to 0 did enforce it: the F returned lost it after)
+                   mistake="the F returned lost its rank 2" if RANK2_HINT.contradicts(code_of(t), ["fundamental_8point"])
+                   else "rank 2 was not enforced")
     return passed(f"smallest singular value {s[2] / s[0]:.1e} of the largest")
 
 

@@ -4174,6 +4174,7 @@ def _reduction_of(node, array) -> bool:
 _FILLED = {"zeros", "ones", "empty", "full", "zeros_like", "ones_like", "empty_like", "full_like"}
 _MADE = _FILLED | {"array", "asarray", "arange"}
 _INTEGER_TYPES = {"int", "np.int32", "np.int64", "np.uint8", "np.int16", "np.uint16", "np.intp", "numpy.int64"}
+_NARROW_INTEGERS = {"np.uint8", "np.int8", "np.int16", "np.uint16"}
 
 
 # A comparison a student writes strictly where it is not (or the wrong way round), and the operators
@@ -4453,10 +4454,14 @@ def _dtype_changes(node: ast.Call, opencv: bool = False):
     if given is not None and isinstance(given.value, ast.Attribute) and given.value.attr == "dtype" \
             and not dotted.endswith("_like"):
         yield "dtype", "np.float64", ""   # (a matrix made in an image's dtype, `dtype=image.dtype`: uint8)
+        if dotted.endswith("arange"):
+            yield "dtype", "np.int64", ""   # (pixel coordinates counted in an image's uint8: 255 + 1 is 0)
     elif given is not None and _dotted(given.value) in _INTEGER_TYPES:
         yield "dtype", "np.float64", ""
         if _dotted(given.value) != "np.uint8":
             yield "dtype", "np.uint8", ""   # (an image built in an int array: right values, not uint8)
+        if _dotted(given.value) in _NARROW_INTEGERS:
+            yield "dtype", "np.int64", ""   # (counts or codes that outgrow 8 or 16 bits: they wrap round)
     elif given is None and dotted.rsplit(".", 1)[-1] in _FILLED \
             and len(node.args) < (3 if dotted.endswith("full") or dotted.endswith("full_like") else 2):
         yield "dtype", "np.uint8", ""
