@@ -255,6 +255,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _safely(_views_merged, name, function)
     found += _safely(_row_norm_of_whole_matrix, name, function)
     found += _safely(_same_array_appended, name, function)
+    found += _safely(_one_object_repeated, name, function)
     found += _safely(_running_best_overwritten, name, function)
     found += _safely(_rolled_strip_one_sign, name, function)
     found += _safely(_scaled_in_place_per_turn, name, function)
@@ -1355,6 +1356,48 @@ def _makes_a_container(node) -> bool:
         return _makes_a_container(node.left) or _makes_a_container(node.right)
     return isinstance(node, (ast.List, ast.ListComp, ast.Dict, ast.DictComp)) \
         or (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("list", "dict"))
+
+
+def _one_object_repeated(name, function) -> list[Finding]:
+    """``Hs = [np.eye(3)] * n`` (or ``grid = [[0] * w] * h``) and an item changed in place (``Hs[k] @= step``,
+    ``grid[i][j] = v``): a list repeated by ``*`` holds the one object n times, so the change is every item's.
+    (One pass over the def's nodes: linear in its size.)"""
+    repeated: dict[str, ast.Assign] = {}
+    for node in _nodes(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.Mult):
+            listed = next((side for side in (node.value.left, node.value.right)
+                           if isinstance(side, ast.List) and len(side.elts) == 1), None)
+            item = listed.elts[0] if listed is not None else None
+            if (isinstance(item, ast.Call) and _call_name(item) in _MADE_ARRAYS) or isinstance(item, ast.List) or (
+                    isinstance(item, ast.BinOp) and isinstance(item.op, ast.Mult)
+                    and any(isinstance(side, ast.List) for side in (item.left, item.right))):
+                repeated.setdefault(node.targets[0].id, node)
+    if not repeated:
+        return []
+    for node in sorted(_nodes(function), key=_line):
+        # (an item changed where it is: `Hs[k] @= ...` on an array, `grid[i][j] = ...` on an inner list)
+        target = node.target if isinstance(node, ast.AugAssign) else \
+            node.targets[0] if isinstance(node, ast.Assign) and len(node.targets) == 1 else None
+        item = target.value if isinstance(node, ast.Assign) and isinstance(target, ast.Subscript) else target
+        if not (isinstance(item, ast.Subscript) and isinstance(item.value, ast.Name) and item.value.id in repeated):
+            continue
+        if isinstance(node, ast.AugAssign) and isinstance(repeated[item.value.id].value, ast.BinOp) \
+                and not _repeats_an_array(repeated[item.value.id].value):
+            continue   # (`counts[k] += 1` on a list of numbers rebinds the item: no object is changed)
+        made = repeated[item.value.id]
+        return [Finding(name, _line(node), "one object repeated by * and changed in place", certain=True, sentence=
+                        f"{name} (line {_line(made)}) makes `{item.value.id}` with `{ast.unparse(made.value)[:60]}`: "
+                        f"a list repeated by * holds the one object that many times, not copies, so "
+                        f"`{ast.unparse(node)[:60]}` (line {_line(node)}), which changes an item in place, changes "
+                        f"every item; make each its own (`[... for _ in range(n)]`)")]
+    return []
+
+
+def _repeats_an_array(value: ast.BinOp) -> bool:
+    """Whether ``[x] * n`` repeats an array made by a call (not a number or a list, which ``+=`` rebinds)."""
+    return any(isinstance(side, ast.List) and isinstance(side.elts[0], ast.Call) for side in (value.left, value.right)
+               if isinstance(side, ast.List) and side.elts)
 
 
 def _same_array_appended(name, function) -> list[Finding]:
