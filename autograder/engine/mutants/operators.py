@@ -833,6 +833,12 @@ def _make_reshape_order(node, payload):
         new.args = [ast.Tuple(list(reversed(new.args[0].elts)), ast.Load())] if len(new.args) == 1 \
             else list(reversed(new.args))
         return ast.Attribute(new, "T", ast.Load())
+    if payload == "swap_first":   # x.reshape(n, 4, 4) -> x.reshape(4, n, 4).transpose(1, 0, 2)
+        new = copy.deepcopy(node)
+        sizes = list(new.args[0].elts) if len(new.args) == 1 else list(new.args)
+        sizes[0], sizes[1] = sizes[1], sizes[0]
+        new.args = [ast.Tuple(sizes, ast.Load())] if len(node.args) == 1 else sizes
+        return ast.Call(ast.Attribute(new, "transpose", ast.Load()), [ast.Constant(1), ast.Constant(0), ast.Constant(2)], [])
     new = copy.deepcopy(node)   # x.reshape(3, 4) -> x.reshape(3, 4, order="F")
     new.keywords = [k for k in new.keywords if k.arg != "order"] + [ast.keyword("order", ast.Constant(payload))]
     return new
@@ -3878,6 +3884,9 @@ def _student_changes(node, parent, parents, words):
         yield "unwrap", None, ""   # a result gathered anew before it is returned: `np.take_along_axis(depth, source)`
     if _rounded_to_decimals(node, dotted):
         yield "unwrap", None, ""   # a value rounded to a few decimals where the exact one belongs: `np.round(c, 2)`
+    if words.student and dotted in ("np.unique", "numpy.unique", "sorted", "set") and node.args \
+            and isinstance(parent, (ast.For, ast.comprehension)) and parent.iter is node:
+        yield "unwrap", None, ""   # a loop over the items sorted and made unique where each given one belongs, in order
     if dotted in ("np.clip", "numpy.clip") and node.args and not (isinstance(parent, ast.Attribute) and parent.attr == "astype"):
         yield "unwrap", None, ""   # a clip of an intermediate value that may be signed or beyond 255: a band-pass level
     if dotted in ("np.maximum", "numpy.maximum", "np.minimum", "numpy.minimum", "max", "min") and len(node.args) == 2 \
@@ -6692,6 +6701,12 @@ def _call_changes(node: ast.Call, words, what, parents):
         # (the student's code only: a 2-D array reshaped to the transposed shape where it is transposed --
         # `pts.reshape(3, -1)` for the points as columns mixes their coordinates; .T moves them)
         yield "reshape_order", "transpose", ""
+    if words.student and method == "reshape" and not dotted.startswith(("np.", "numpy.")) and not node.keywords \
+            and (len(node.args) == 3 or (len(node.args) == 1 and isinstance(node.args[0], ast.Tuple)
+                                         and len(node.args[0].elts) == 3)):
+        # (a stack regrouped by reshape where its first two axes trade places: `rows.reshape(n, 4, 4)` of a
+        # (4, n, 4) stack mixes the points' equations; .transpose(1, 0, 2) moves them)
+        yield "reshape_order", "swap_first", ""
     if method in _ORDERED and not any(k.arg == "order" for k in node.keywords):
         array = what(node.args[0]) if dotted.startswith(("np.", "numpy.")) and node.args else what(node.func.value)
         yield "reshape_order", "F", f"{array or 'an array'} is {_ORDERED[method]} column by column " \
