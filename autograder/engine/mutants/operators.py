@@ -790,6 +790,23 @@ def _make_math_numpy(node, payload):
     return new
 
 
+def _parameters_for_identity(node, parents) -> list[str]:
+    """The def's parameters an identity given to an OpenCV call (`np.eye(3)`, `np.identity(3)`) may stand for."""
+    if not (isinstance(node, ast.Call) and _dotted(node.func) in ("np.eye", "numpy.eye", "np.identity", "numpy.identity")
+            and id(node) in parents):
+        return []
+    call = parents[id(node)][0]
+    if not (isinstance(call, ast.Call) and _dotted(call.func).startswith(("cv2.", "cv."))):
+        return []
+    scope = call
+    while id(scope) in parents and not isinstance(scope, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        scope = parents[id(scope)][0]
+    if not isinstance(scope, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        return []
+    given = {n.id for n in ast.walk(call) if isinstance(n, ast.Name)}
+    return [a.arg for a in (*scope.args.posonlyargs, *scope.args.args) if a.arg in given][:3]
+
+
 _IMAGE_FILTERS = frozenset({"blur", "boxFilter", "sqrBoxFilter", "GaussianBlur", "medianBlur", "filter2D",
                             "bilateralFilter"})
 
@@ -3422,6 +3439,10 @@ def _student_changes(node, parent, parents, words):
         yield "reverse_back", f"{_operand(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
     yield from _fraction_changes(node)
+    for parameter in _parameters_for_identity(node, parents):
+        # an identity written where a matrix the function is given belongs (cv2.initUndistortRectifyMap's
+        # new camera matrix np.eye(3), where K keeps the image's pixels)
+        yield "other_name", parameter, ""
     if _filters_a_made_stack(node, parents):
         # an image filter given a whole stack the def made (D, H, W) at once: OpenCV reads its last axis as
         # channels and filters across the first two -- each image of the stack on its own is meant
