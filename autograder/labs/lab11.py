@@ -846,11 +846,12 @@ def draw_full_width(t):
         [-1.0, -0.05, 120.0],     # nearly vertical
         [119.0, -100.0, 0.0],     # through the top-left corner (0, 0), out through the bottom at x = 100
         [119.0, 99.0, -18921.0],  # through the top-right corner (159, 0), out through the bottom at x = 60
+        [1.0, -1.05, -20.0],      # 44 degrees, in at the top (x = 20), out at the bottom (x = 145): meets no side
     ]))   # (a line through a corner meets two borders there: its end points are that corner and the other end)
     got = t.call("draw_epipolar_lines", image, lines)
     what = "draw_epipolar_lines(grey image, lines)"
     if isinstance(got, np.ndarray) and got.ndim in (2, 3):
-        t.images("draw_epipolar_lines(black 160 x 120 grey image, 5 lines)", input=image, yours=got)
+        t.images(f"draw_epipolar_lines(black 160 x 120 grey image, {len(lines)} lines)", input=image, yours=got)
     judge_drawing(t, what, got, image, lines)
     if got.shape != image.shape:
         # The API: a function that takes an image returns the input's channel count unless stated
