@@ -616,3 +616,40 @@ def test_a_float_that_is_no_size_is_not_told_as_one():
             return np.full((h, w), mean / 2)
         """
     assert _raised_at(source, 6, "'numpy.float64' object cannot be interpreted as an integer", (None, 1, 2)) is None
+
+
+def _domain(source: str, line: int, args, message: str = "math domain error"):
+    tb = f'Traceback (your code):\n  File "lab.py", line {line}, in f\n    ...\nValueError: {message}'
+    return explained(read_code(textwrap.dedent(source)), tb, f"f() raised ValueError: {message}", "f", args, {})
+
+
+def test_a_math_function_given_a_number_outside_what_it_takes_is_told_at_its_call():
+    """`math.log(1 - w ** 4)` beside `math.log(1 - confidence)` (the blind set 1206a's 08/02: every pair an inlier,
+    w = 1): the call whose argument is not worked out from the numbers given -- the default confidence is one of
+    them -- is told; Python 3.14's wording of the error too."""
+    source = """
+        import math
+        def f(n, confidence=0.99):
+            w = n / n
+            return math.log(1 - confidence) / math.log(1 - w ** 4)
+        """
+    for message in ("math domain error", "expected a positive input, got 0.0"):
+        form = _domain(source, 5, (4,), message)
+        assert form is not None and "math.log(1 - w ** 4)" in form.sentence and "positive" in form.sentence, form
+        assert "1 - confidence" not in form.sentence.split("math.log takes")[0].replace("math.log(1 - w ** 4)", "")
+
+
+def test_a_math_domain_error_is_not_told_where_which_call_raised_is_not_known():
+    """Two calls whose arguments are both unknown: either may have raised, so neither is told; a square root
+    told with its own domain where it is the only one."""
+    assert _domain("""
+        import math
+        def f(a, b):
+            return math.sqrt(a - b) + math.acos(b)
+        """, 4, (np.float64(1.0), np.float64(2.0))) is None
+    form = _domain("""
+        import math
+        def f(c):
+            return math.acos(c / 2) + 1
+        """, 4, (np.array([3.0]),))
+    assert form is not None and "from -1 to 1" in form.sentence, form

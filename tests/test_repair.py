@@ -5308,3 +5308,119 @@ def test_results_returned_in_another_order_are_told_in_the_order_asked(tmp_path)
     told = [c for c in check_results(result, "lab10.ex5") if c.mistake.startswith(repair.MISTAKE)]
     assert told, [c.message for c in check_results(result, "lab10.ex5")]
     assert "changing `(R, t, K / scale)` to `(K / scale, R, t)`" in told[0].message, told[0].message
+
+
+def _changes_of(source: str, operator: str) -> set:
+    student, mutants = _read(source)
+    return {student.fix(m).changes[0][1:] for m in mutants if student.fix(m) is not None and m.operator == operator}
+
+
+def test_a_matrix_named_from_another_or_from_lstsq_may_be_its_transpose():
+    """`L = X` of lstsq's solution (one column per output: the transpose of the linear part) and a matrix taken
+    from a linear-algebra call are offered their transpose (the blind set 1206a's 07/02); a name given a number is
+    offered one too (it does not confirm), a name given itself is not."""
+    changes = _changes_of("""
+        def graded(src, dst):
+            X, *_ = np.linalg.lstsq(src, dst, rcond=None)
+            L = X
+            W = np.linalg.lstsq(src, dst, rcond=None)[0]
+            return L @ W
+    """, "transpose")
+    assert ("L = X", "L = X.T") in changes, changes
+    assert any(before.endswith("lstsq(src, dst, rcond=None)[0]") and after.endswith("lstsq(src, dst, rcond=None)[0].T")
+               for before, after in changes), changes
+
+
+def test_a_row_written_after_its_names_were_given_the_next_points_values_moves_before_them():
+    """`x, y = dst[i]` before the y'-row `M[r] = [0, 0, 0, x, y, 1]` that needs the source point's x, y (the blind
+    set 1206a's 07/03): that row moved before the rebinding is a change tried; a name updated from itself is the
+    other kind of move, and a name bound only once gives none."""
+    changes = _changes_of("""
+        def graded(src, dst):
+            M, rhs = np.zeros((6, 6)), np.zeros(6)
+            for i in range(3):
+                x, y = src[i]
+                M[2 * i] = [x, y, 1.0, 0.0, 0.0, 0.0]
+                x, y = dst[i]
+                rhs[2 * i] = x
+                rhs[2 * i + 1] = y
+                M[2 * i + 1] = [0.0, 0.0, 0.0, x, y, 1.0]
+            return np.linalg.solve(M, rhs)
+    """, "move")
+    assert any(before == "M[2 * i + 1] = [0.0, 0.0, 0.0, x, y, 1.0]" and "before line" in after for before, after in changes), changes
+
+
+def test_an_entrywise_reciprocal_where_the_inverse_belongs_is_a_change_tried():
+    """`M ** -1` and `1 / M` (the sheet's M^-1 written entry by entry: the blind set 1206a's 10/06) are offered
+    np.linalg.inv; a power of -2 is not."""
+    changes = _changes_of("""
+        def graded(M, N):
+            return np.linalg.qr(M ** -1)[1] + 1 / N + M ** -2
+    """, "inverse")
+    afters = {after for _, after in changes}
+    assert "np.linalg.qr(np.linalg.inv(M))[1]" in afters or any("np.linalg.inv(M)" in a for a in afters), changes
+    assert any("np.linalg.inv(N)" in a for a in afters), changes
+    assert not any("np.linalg.inv(M) ** " in a or "inv(M ** -2)" in a for a in afters), changes
+
+
+def test_narrow_integers_and_an_images_dtype_for_coordinates_are_offered_int64():
+    """Column indices in uint16 (`u * 2 ** n` wraps past 65535: the blind set 1206a's 12/04) and pixel coordinates
+    counted in the image's dtype (uint8: 255 + 1 is 0, 07/05) are offered int64; an int64 array is not."""
+    changes = _changes_of("""
+        def graded(image, width):
+            u = np.arange(width, dtype=np.uint16)
+            xs = np.arange(image.shape[1], dtype=image.dtype)
+            k = np.arange(width, dtype=np.int64)
+            return u, xs, k
+    """, "dtype")
+    assert ("np.arange(width, dtype=np.uint16)", "np.arange(width, dtype=np.int64)") in changes, changes
+    assert ("np.arange(image.shape[1], dtype=image.dtype)", "np.arange(image.shape[1], dtype=np.int64)") in changes
+    assert not any(before.startswith("np.arange(width, dtype=np.int64)") and "int64" in after
+                   for before, after in changes), changes
+
+
+def test_a_stack_regrouped_by_reshape_and_a_loop_over_unique_items_are_changes_tried():
+    """`rows.reshape(n, 4, 4)` of a (4, n, 4) stack (the blind set 1206a's 11/01) is offered the transpose of its
+    first two axes; a loop over `np.unique(points, axis=0)` (11/02) is offered the points themselves."""
+    source = """
+        def graded(rows, points, n):
+            A = rows.reshape(n, 4, 4)
+            out = []
+            for x, y in np.unique(points, axis=0):
+                out.append(x + y)
+            return A, out
+    """
+    assert ("rows.reshape(n, 4, 4)", "rows.reshape(4, n, 4).transpose(1, 0, 2)") in _changes_of(source, "reshape_order")
+    assert ("np.unique(points, axis=0)", "points") in _changes_of(source, "unwrap")
+
+
+def test_a_filter_given_a_stack_the_def_made_is_applied_to_each_image():
+    """`cv2.blur(costs, (k, k))` and a helper `_box(costs, k)` of a (D, H, W) volume the def made with np.zeros
+    (the blind set 1206a's 12/03: OpenCV reads the last axis as channels) are offered one call per image; a
+    filter of an image given as a parameter is not."""
+    changes = _changes_of("""
+        def graded(left, k):
+            costs = np.zeros((8, 20, 30))
+            a = cv2.blur(costs, (k, k))
+            b = _box(costs, k)
+            c = cv2.blur(left, (k, k))
+            return a + b, c
+    """, "per_image")
+    afters = {after for _, after in changes}
+    assert "np.stack([cv2.blur(_image, (k, k)) for _image in costs])" in afters, changes
+    assert "np.stack([_box(_image, k) for _image in costs])" in afters, changes
+    assert not any("for _image in left" in after for after in afters), changes
+
+
+def test_an_identity_given_to_opencv_is_offered_the_matrices_the_function_is_given():
+    """`np.eye(3)` as initUndistortRectifyMap's new camera matrix (the blind set 1206a's 10/02) is offered K, a
+    parameter the call is given; an identity outside an OpenCV call is not."""
+    changes = _changes_of("""
+        def graded(image, K, dist):
+            h, w = image.shape[:2]
+            maps = cv2.initUndistortRectifyMap(K, dist, None, np.eye(3), (w, h), cv2.CV_32FC1)
+            return maps, np.eye(3)
+    """, "other_name")
+    assert any("np.eye(3)" in before and after.endswith("K, (w, h), cv2.CV_32FC1)") or (before, after) == ("np.eye(3)", "K")
+               for before, after in changes), changes
+    assert ("(maps, np.eye(3))", "(maps, K)") not in changes, changes

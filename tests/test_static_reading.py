@@ -1719,3 +1719,54 @@ def test_a_binary_search_of_the_gray_codes_in_stripe_order_is_read():
     assert not one(source.format(table="np.sort(stripes ^ (stripes >> 1))", sorter=""))
     assert not one(source.format(table="stripes ^ (stripes >> 1)", sorter=", sorter=np.argsort(codes)"))
     assert not one(source.format(table="stripes * 2", sorter=""))
+
+
+def test_a_list_repeated_by_star_and_an_item_changed_in_place_is_read():
+    """`[np.eye(3)] * n` with `Hs[k] @= step` (the blind set 1206a's 08/03) and `[[0.0] * 3] * 3` with
+    `M[0][0] = sx` hold one object n times: an item changed in place changes every item. A list of numbers
+    (`counts[k] += 1` rebinds the item) and an item given a new array are not read as one."""
+    repeated = "one object repeated by * and changed in place"
+    assert repeated in one("""
+        def f(steps):
+            Hs = [np.eye(3)] * len(steps)
+            for k, step in enumerate(steps):
+                Hs[k] @= step
+            return Hs
+        """)
+    assert repeated in one("""
+        def f(sx, sy):
+            M = [[0.0] * 3] * 3
+            M[0][0] = sx
+            M[1][1] = sy
+            return np.array(M)
+        """)
+    assert repeated not in one("""
+        def f(n):
+            counts = [0] * n
+            counts[1] += 1
+            Hs = [np.eye(3)] * n
+            Hs[1] = Hs[1] @ np.eye(3)
+            return counts, Hs
+        """)
+
+
+def test_a_loop_value_never_used_is_not_told_as_items_left_unchanged():
+    """`for la, lb, w in zip(lap_a, lap_b, masks): w = w[..., None]` with nothing reading `w` or `masks` after (the
+    blind set 1206a's 08/06: the mask ignored): the value is told unused, not the items unchanged; where the items
+    looped over are read after the loop, the dropped value is the cause."""
+    unused = one("""
+        def f(lap_a, lap_b, masks):
+            out = []
+            for la, lb, w in zip(lap_a, lap_b, masks):
+                w = w[..., None]
+                out.append(la + lb)
+            return out
+        """)
+    assert "a value made in a loop and never used" in unused and "a value assigned to the loop variable and dropped" not in unused
+    dropped = one("""
+        def f(images):
+            for image in images:
+                image = image / 255.0
+            return images
+        """)
+    assert "a value assigned to the loop variable and dropped" in dropped

@@ -6,6 +6,89 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 from . import reference_def_with
 
 MISTAKES = {
+    # the blind set 1206a's 07/02: lstsq solves src_c @ X = dst_c, so X is the linear part transposed
+    "affine_lstsq using lstsq's solution untransposed as the linear part": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, dtype=np.float64)
+            dst = np.asarray(dst, dtype=np.float64)
+            # The translation columns of the system only fit the centroids, so the
+            # least-squares problem splits: the linear part [[a, b], [d, e]] is fitted to
+            # the centred points, and the translation then maps centroid onto centroid.
+            src_mean = src.mean(axis=0)
+            dst_mean = dst.mean(axis=0)
+            src_c = src - src_mean
+            dst_c = dst - dst_mean
+            # least squares for src_c @ X ~ dst_c (one column of X per output coordinate)
+            X, *_ = np.linalg.lstsq(src_c, dst_c, rcond=None)
+            L = X
+            t = dst_mean - L @ src_mean
+            return np.hstack([L, t[:, None]])
+        """, ['to `L = X.T`']),
+    # the blind set 1206a's 07/03: the names of the source point reused for the destination before its second row
+    "affine_from_points writing the y-row after x, y were given the destination point": ("lab07.ex5", """
+        def affine_from_points(src, dst):
+            src = np.asarray(src, dtype=np.float64)
+            dst = np.asarray(dst, dtype=np.float64)
+            # 6x6 system, two rows per pair:  [x y 1 0 0 0] -> x'   and   [0 0 0 x y 1] -> y'
+            M = np.zeros((6, 6))
+            rhs = np.zeros(6)
+            for i in range(3):
+                x, y = src[i]
+                M[2 * i] = [x, y, 1.0, 0.0, 0.0, 0.0]
+                x, y = dst[i]
+                rhs[2 * i] = x
+                rhs[2 * i + 1] = y
+                M[2 * i + 1] = [0.0, 0.0, 0.0, x, y, 1.0]
+            params = np.linalg.solve(M, rhs)   # (a, b, c, d, e, f)
+            return params.reshape(2, 3)
+        """, ['moving `M[2 * i + 1] = [0.0, 0.0, 0.0, x, y, 1.0]`']),
+    # the blind set 1206a's 07/01: a hand-written bilinear interpolation weighing columns with y's fraction and rows with x's
+    "warp_affine interpolating with the fractions of x and y exchanged": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            A = np.asarray(A, dtype=np.float64)[:2]
+            height, width = image.shape[:2]
+            out_w, out_h = dsize if dsize is not None else (width, height)
+
+            # Inverse mapping: output pixel (x', y') takes its value from the source
+            # position A^-1 (x', y', 1).
+            A_inv = np.linalg.inv(np.vstack([A, [0.0, 0.0, 1.0]]))
+            xs, ys = np.meshgrid(np.arange(out_w, dtype=np.float64), np.arange(out_h, dtype=np.float64))
+            src_x = A_inv[0, 0] * xs + A_inv[0, 1] * ys + A_inv[0, 2]
+            src_y = A_inv[1, 0] * xs + A_inv[1, 1] * ys + A_inv[1, 2]
+
+            # Bilinear interpolation from the four neighbours. The picture gets a black
+            # one-pixel frame so that neighbours outside it count as 0 (black fill).
+            img = image.astype(np.float64)
+            if img.ndim == 2:
+                img = img[:, :, None]
+            padded = np.zeros((height + 2, width + 2, img.shape[2]))
+            padded[1:-1, 1:-1] = img
+            x0 = np.floor(src_x).astype(int)
+            y0 = np.floor(src_y).astype(int)
+            fx = (src_x - x0)[..., None]      # fraction between column x0 and x0 + 1
+            fy = (src_y - y0)[..., None]      # fraction between row y0 and y0 + 1
+            inside = (x0 >= -1) & (x0 <= width - 1) & (y0 >= -1) & (y0 <= height - 1)
+            c0 = np.clip(x0, -1, width - 1) + 1   # column of the left neighbour in `padded`
+            r0 = np.clip(y0, -1, height - 1) + 1  # row of the upper neighbour in `padded`
+            upper = (1 - fy) * padded[r0, c0] + fy * padded[r0, c0 + 1]
+            lower = (1 - fy) * padded[r0 + 1, c0] + fy * padded[r0 + 1, c0 + 1]
+            out = (1 - fx) * upper + fx * lower
+            out[~inside] = 0
+            out = np.clip(np.round(out), 0, 255).astype(image.dtype)
+            return out[:, :, 0] if image.ndim == 2 else out
+        """, ['mixes neighbouring columns too']),
+    # the blind set 1206a's 07/05: coordinates past 255 wrap round to 0
+    "scale counting its sampling grid in the image's uint8": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            height, width = image.shape[:2]
+            # Inverse mapping: output pixel (x, y) shows the input at (x / sx, y / sy);
+            # cv2.remap samples there (bilinear), black where that lies outside the input.
+            cols, rows = np.meshgrid(np.arange(width, dtype=image.dtype), np.arange(height, dtype=image.dtype))
+            map_x = (cols / sx).astype(np.float32)
+            map_y = (rows / sy).astype(np.float32)
+            return cv2.remap(image, map_x, map_y, cv2.INTER_LINEAR,
+                             borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+        """, ['dtype=np.int64']),
     # the blind set 1205h's 07/01: collinearity tested against a fixed number (det(M^T M) shrinks with the 8th power
     # of the points' spread: points a few centimetres apart are refused)
     "affine_lstsq refusing points of small coordinates as collinear": ("lab07.ex6", reference_def_with(

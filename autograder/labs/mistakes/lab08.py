@@ -50,6 +50,65 @@ _COMPOSE_FEATHERED = """
         """
 
 MISTAKES = {
+    # the blind set 1206a's 08/03: a list repeated by * holds one array, which @= changes for every image
+    "stitch_many keeping one matrix n times ([np.eye(3)] * n) and updating it in place": ("lab08.ext2", """
+        def stitch_many(images):
+            images = list(images)
+            if len(images) < 2:
+                raise ValueError("need at least two images")
+            features = [_detect(image) for image in images]   # once per image
+            step = [_pairwise_homography(features[k + 1], features[k]) for k in range(len(images) - 1)]
+            r = len(images) // 2
+            # homographies[k] takes image k into the reference image r; start from I
+            homographies = [np.eye(3)] * len(images)
+            for k in range(r + 1, len(images)):
+                # right of r: H_{k->r} = step[r] @ step[r+1] @ ... @ step[k-1]
+                for j in range(r, k):
+                    homographies[k] @= step[j]
+            for k in range(r):
+                # left of r: H_{k->r} = inv(step[r-1]) @ ... @ inv(step[k])
+                for j in range(r - 1, k - 1, -1):
+                    homographies[k] @= np.linalg.inv(step[j])
+            homographies = [H / H[2, 2] for H in homographies]
+            return _compose(images, homographies)
+        """, ['holds the one object']),
+    # the blind set 1206a's 08/06: the apple/orange tutorial's halves, the mask's level computed and never read
+    "blend_multiband joining left and right halves of each band, the mask level unused": ("lab08.ext3", """
+        def blend_multiband(img1, img2, mask, levels=4):
+            a = np.asarray(img1, dtype=np.float32)
+            b = np.asarray(img2, dtype=np.float32)
+            m = np.clip(np.asarray(mask, dtype=np.float32), 0, 1)
+
+            # Gaussian pyramids (level 0 = full size)
+            gauss_a, gauss_b, gauss_m = [a], [b], [m]
+            for _ in range(levels - 1):
+                gauss_a.append(cv2.pyrDown(gauss_a[-1]))
+                gauss_b.append(cv2.pyrDown(gauss_b[-1]))
+                gauss_m.append(cv2.pyrDown(gauss_m[-1]))
+
+            # Laplacian pyramids: band i = G_i - up(G_{i+1}); the top keeps the low-pass G
+            lap_a, lap_b = [], []
+            for i in range(levels - 1):
+                size = (gauss_a[i].shape[1], gauss_a[i].shape[0])
+                lap_a.append(gauss_a[i] - cv2.pyrUp(gauss_a[i + 1], dstsize=size))
+                lap_b.append(gauss_b[i] - cv2.pyrUp(gauss_b[i + 1], dstsize=size))
+            lap_a.append(gauss_a[-1])
+            lap_b.append(gauss_b[-1])
+
+            # blend every level with the mask at that scale
+            blended = []
+            for la, lb, w in zip(lap_a, lap_b, gauss_m):
+                if la.ndim == 3:
+                    w = w[..., None]
+                half = la.shape[1] // 2
+                blended.append(np.hstack([la[:, :half], lb[:, half:]]))
+
+            # collapse: upsample and add the next finer band
+            result = blended[-1]
+            for band in reversed(blended[:-1]):
+                result = cv2.pyrUp(result, dstsize=(band.shape[1], band.shape[0])) + band
+            return np.clip(np.round(result), 0, 255).astype(np.uint8)
+        """, ['is never used']),
     # the blind set 1205h's 08/03: the collapsed pyramid min-max stretched to 0..255 where it belongs clipped
     "blend_multiband stretching the blend to 0..255 instead of clipping it": ("lab08.ext3", reference_def_with(
         "lab08_homographies", "blend_multiband", "return np.clip(np.round(result), 0, 255).astype(np.uint8)",

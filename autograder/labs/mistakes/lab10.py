@@ -20,6 +20,37 @@ _DECOMPOSE = """
         """
 
 MISTAKES = {
+    # the blind set 1206a's 10/06: the sheet's M^-1 written as an elementwise power
+    "decompose_camera_matrix inverting M entry by entry (M ** -1)": ("lab10.ex5", """
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=np.float64)
+            M = P[:, :3]
+            p4 = P[:, 3]
+            if np.linalg.det(M) < 0:            # make det(R) = +1
+                M, p4 = -M, -p4
+            # lab sheet: QR of M^-1.  M^-1 = Q U  =>  M = U^-1 Q^T  with U^-1 upper triangular
+            Q, U = np.linalg.qr(M ** -1)
+            K = np.linalg.inv(U)
+            R = Q.T
+            # make K's diagonal positive: flip K's columns and R's rows together
+            S = np.diag(np.sign(np.diag(K)))
+            K = K @ S
+            R = S @ R
+            t = np.linalg.solve(K, p4)          # p4 = K t
+            return K / K[2, 2], R, t
+        """, ['np.linalg.inv(M)']),
+    # the blind set 1206a's 10/02: np.eye(3) as newCameraMatrix maps every pixel to the normalised plane
+    "undistort_image giving an identity as the new camera matrix": ("lab10.ext1", """
+        def undistort_image(image, K, dist):
+            K = np.asarray(K, np.float64)
+            dist = np.asarray(dist, np.float64)
+            h, w = image.shape[:2]
+            # for every pixel of the undistorted output, where to sample the distorted input;
+            # no rectification rotation, and the output keeps the camera matrix
+            map1, map2 = cv2.initUndistortRectifyMap(K, dist, np.eye(3), np.eye(3), (w, h), cv2.CV_16SC2)
+            return cv2.remap(image, map1, map2, cv2.INTER_LINEAR,
+                             borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+        """, ['to `K`']),
     # the blind set 1205b's 10/02: the principal axis det(M) m3 returned where the centre belongs
     "dolly_zoom keeping the first point's size": ("lab10.ext2", """
         def dolly_zoom(points, f0, z0, distances):

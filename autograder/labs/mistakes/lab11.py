@@ -45,6 +45,64 @@ _WITHOUT_K = _MATCHED + """            inliers = mask.ravel().astype(bool)
 """
 
 MISTAKES = {
+    # the blind set 1206a's 11/01: a (4, N, 4) stack reshaped to (N, 4, 4) mixes the points' equations
+    "triangulate regrouping the equations by reshape where a transpose belongs": ("lab11.ex1", """
+        def triangulate(P1, P2, pts1, pts2):
+            P1 = np.asarray(P1, dtype=np.float64)
+            P2 = np.asarray(P2, dtype=np.float64)
+            x1 = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
+            x2 = np.asarray(pts2, dtype=np.float64).reshape(-1, 2)
+            n = len(x1)
+            # the four equations for all points at once, one (N, 4) block per equation
+            rows = np.array([np.outer(x1[:, 0], P1[2]) - P1[0],
+                             np.outer(x1[:, 1], P1[2]) - P1[1],
+                             np.outer(x2[:, 0], P2[2]) - P2[0],
+                             np.outer(x2[:, 1], P2[2]) - P2[1]])        # (4, N, 4)
+            # one 4x4 system per point
+            A = rows.reshape(n, 4, 4)                                        # (N, 4, 4)
+            _, _, Vt = np.linalg.svd(A)
+            X = Vt[:, -1, :]                                          # smallest singular value
+            return X[:, :3] / X[:, 3:]
+        """, ['transpose(1, 0, 2)']),
+    # the blind set 1206a's 11/02: np.unique sorts the points and drops repeated ones
+    "epipolar_lines looping over the unique points (sorted, repeats dropped)": ("lab11.ex2", """
+        def epipolar_lines(F, pts1):
+            F = np.asarray(F, dtype=np.float64)
+            points = np.asarray(pts1, dtype=np.float64).reshape(-1, 2)
+            lines = []
+            for x, y in np.unique(points, axis=0):
+                a, b, c = F @ np.array([x, y, 1.0])        # l' = F x
+                norm = np.hypot(a, b)
+                lines.append([a / norm, b / norm, c / norm])
+            return np.array(lines, dtype=np.float64).reshape(-1, 3)
+        """, ['to `points`']),
+    # the blind set 1206a's 11/03: a 44-degree line crossing only the top and bottom of a wide image is never drawn
+    "draw_epipolar_lines skipping a line whose ends on its own borders are both outside": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            out = np.array(image, dtype=np.uint8, copy=True)
+            h, w = out.shape[:2]
+            for i, (a, b, c) in enumerate(np.asarray(lines, dtype=np.float64).reshape(-1, 3)):
+                if abs(b) >= abs(a):
+                    # closer to horizontal: end points on the left and right borders
+                    y_left = -c / b
+                    y_right = -(c + a * (w - 1)) / b
+                    start, end = (0.0, y_left), (w - 1.0, y_right)
+                    if not (0 <= y_left <= h - 1 or 0 <= y_right <= h - 1):
+                        continue
+                else:
+                    # closer to vertical: end points on the top and bottom borders
+                    x_top = -c / a
+                    x_bottom = -(c + b * (h - 1)) / a
+                    start, end = (x_top, 0.0), (x_bottom, h - 1.0)
+                    if not (0 <= x_top <= w - 1 or 0 <= x_bottom <= w - 1):
+                        continue
+                ok, p, q = cv2.clipLine((0, 0, w, h), _to_int(start, w, h), _to_int(end, w, h))
+                if not ok:
+                    continue                         # the line does not cross the image
+                colour = _PALETTE[i % len(_PALETTE)] if out.ndim == 3 else 255
+                cv2.line(out, p, q, colour, 1, cv2.LINE_8)
+            return out
+        """, ['leave the image through its top or bottom border']),
     # the blind set 1205h's 11/01: np.kron of the two whole point arrays: a row for every pair of points (N^2 rows)
     "fundamental_8point building A with np.kron of the whole point arrays": ("lab11.ex4", reference_def_with(
         "lab11_two_view", "_eight_point_core", "A = (x2[:, :, None] * x1[:, None, :]).reshape(len(x1), 9)",

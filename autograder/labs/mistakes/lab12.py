@@ -34,6 +34,83 @@ _DP = """
 """
 
 MISTAKES = {
+    # the blind set 1206a's 12/04: u * 2 ** n_bits wraps past 65535
+    "gray_code_patterns counting the columns in uint16": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            width, n_bits = int(width), int(n_bits)
+            columns = np.arange(width, dtype=np.uint16)
+            stripe = columns * 2 ** n_bits // width          # k = floor(u 2^n / width)
+            gray = stripe ^ (stripe >> 1)                     # binary-reflected Gray code
+            patterns = np.zeros((n_bits, width), dtype=np.uint8)
+            for i in range(n_bits):
+                bit = (gray >> (n_bits - 1 - i)) & 1          # row 0 = most significant bit
+                patterns[i] = 255 * bit
+            return patterns
+        """, ['dtype=np.int64']),
+    # the blind set 1206a's 12/03: OpenCV reads the (D, H, W) volume's last axis as channels
+    "dp_stereo box-filtering the whole cost volume with one cv2.blur": ("lab12.ex5", """
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
+            left, right = _grey_float(left), _grey_float(right)
+            D = int(max_disparity) + 1
+            height, width = left.shape
+            # absolute difference for every candidate d, then its mean over the block
+            diffs = np.zeros((D, height, width))
+            for d in range(min(D - 1, width - 1) + 1):
+                diffs[d] = np.abs(left - _shift_right(right, d))
+            block = _box_mean(diffs, int(block_size))
+            costs = np.full((D, height, width), 255.0, dtype=np.float32)
+            for d in range(min(D - 1, width - 1) + 1):
+                costs[d, :, d:] = block[d, :, d:]            # no match where x - d < 0
+            costs = np.ascontiguousarray(costs.transpose(2, 1, 0))         # (W, H, D)
+            if s == 0:
+                return np.argmin(costs, axis=2).T.astype(np.float64)
+
+            width = costs.shape[0]
+            ramp = (s * np.arange(D)).astype(np.float32)
+            energy = np.empty_like(costs)                 # M(x, d) for every row at once
+            energy[0] = costs[0]
+            for x in range(1, width):
+                previous = energy[x - 1]
+                from_below = np.minimum.accumulate(previous - ramp, axis=1) + ramp
+                from_above = np.minimum.accumulate((previous + ramp)[:, ::-1], axis=1)[:, ::-1] - ramp
+                best = np.minimum(from_below, from_above)
+                energy[x] = costs[x] + best - best.min(axis=1, keepdims=True)   # keep the numbers small
+
+            disparity = np.empty((width, costs.shape[1]), dtype=np.int64)
+            disparity[-1] = np.argmin(energy[-1], axis=1)
+            candidates = np.arange(D)
+            for x in range(width - 1, 0, -1):
+                jump = ramp[np.abs(candidates[None, :] - disparity[x][:, None])]
+                disparity[x - 1] = np.argmin(energy[x - 1] + jump, axis=1)
+            return disparity.T.astype(np.float64)
+        """, ['for _image in diffs']),
+    # the blind set 1206a's 12/02: right[:, :width - d] with d > width keeps all but the last columns
+    "block_matching shifting by disparities past the image's width": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost not in ("ssd", "ncc"):
+                raise ValueError(f"unknown cost {cost!r}: use 'ssd' or 'ncc'")
+            L, Rgt = _grey_float(left), _grey_float(right)
+            max_disparity, block_size = int(max_disparity), int(block_size)
+            if cost == "ncc":
+                volume = _ncc_volume(L, Rgt, max_disparity, block_size)
+                return np.argmin(volume, axis=0).astype(np.float64)
+
+            height, width = L.shape
+            best_cost = np.full((height, width), np.inf)
+            best_d = np.zeros((height, width))
+            for d in range(max_disparity + 1):
+                # right image moved d columns to the right: shifted[:, x] = right[:, x - d]
+                shifted = np.empty_like(Rgt)
+                shifted[:, d:] = Rgt[:, :width - d]
+                shifted[:, :d] = Rgt[:, :1]
+                ssd = _box_mean((L - shifted) ** 2, block_size)
+                ssd[:, :d] = np.inf                  # x - d is outside the right image
+                better = ssd < best_cost             # strict: ties keep the smaller d
+                best_cost[better] = ssd[better]
+                best_d[better] = d
+            return best_d
+        """, ['a negative slice bound counts from the end']),
     # the blind set 1205b's 12/01: both views warped onto a canvas grown to hold them, not the input's size
     "rectify warping onto a canvas grown to hold both views": ("lab12.ex3", reference_def_with(
         "lab12_stereo", "rectify",
