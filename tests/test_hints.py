@@ -16,7 +16,7 @@ from autograder.engine.runner import grade
 from autograder.labs.lab08 import SECOND_WARP_HINT
 from autograder.labs.lab11 import EIGHT_POINTS_HINT, IN_FRONT_HINT
 from autograder.labs.lab12 import NCC_HINT
-from conftest import check_results, mutant
+from conftest import check_results, edited_reference, mutant
 
 
 def found(predicate, source: str, function: str = "f") -> str:
@@ -220,6 +220,17 @@ def test_a_half_bright_strip_is_not_told_to_warp_with_t_at_h_which_it_does(tmp_p
     [strip] = [c for c in check_results(result, "lab08.ex5") if c.name.startswith("stitch: the part only img2")]
     assert not strip.passed and strip.hint == SECOND_WARP_HINT.neutral(
         "warps with a product of a shift and a homography")
+
+
+def test_a_misplaced_strip_is_told_to_look_at_h_not_at_its_brightness(tmp_path, no_repairs):
+    """H rounded to two decimals before the warp (the blind set 1206a's 08/04): img2's strip is as bright as the
+    truth's but elsewhere -- its pixels do not follow the truth's -- so the hint that the code already warps with
+    T @ H points at H itself, not at brightness or blending (code identical to the reference's)."""
+    folder = edited_reference(tmp_path, "lab08_homographies", ("    H21 = _pairwise_homography(img2, img1)\n",
+                                                                "    H21 = np.round(_pairwise_homography(img2, img1), 2)\n"))
+    result = grade(folder, ["lab08.ex5"], pictures="none", include_hidden=False)
+    [strip] = [c for c in check_results(result, "lab08.ex5") if c.name.startswith("stitch: the part only img2")]
+    assert not strip.passed and "compare how the pixels" not in strip.hint and "the H itself" in strip.hint, strip.hint
 
 
 def test_an_image_converted_to_uint8_then_back_is_not_told_to_convert_it(tmp_path, no_repairs):

@@ -94,3 +94,43 @@ def test_rays_crowding_a_blur_disc_of_another_size_are_not_told_to_take_the_root
     [advice] = [c for c in check_results(result, exercise) if c.name.startswith("simulate_aperture fills the pinhole")]
     assert "of the rays land within half the blur radius" in advice.message, advice.message
     assert "sqrt(u)" not in advice.message and "do not all reach its blur radius" in advice.message, advice.message
+
+
+def test_rows_of_another_width_are_not_told_as_points_taken_for_one(tmp_path):
+    """r^2 kept as an (N, 1) column beside 1-D x and y (the blind set 1206a's 09/03): the answer is (N, 2N) for any
+    N, so two points give two rows of another width -- not two points taken for one (no length test in the code),
+    and a one-row array's (1, 2) is not told to be (1, 12)."""
+    from autograder.engine.conventions import SQUARE_TAKEN
+    from autograder.engine.runner import grade
+    from conftest import check_results, edited_reference
+
+    folder = edited_reference(tmp_path, "lab09_camera", *_KEEPDIMS)
+    result = grade(folder, ["lab09.ext2"], pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab09.ext2") if not c.passed]
+    assert failed and not any(c.mistake == SQUARE_TAKEN for c in failed), [(c.name, c.mistake) for c in failed]
+    assert not any("expected (1, " in c.message for c in failed), [c.message for c in failed]
+
+
+def test_a_seeded_call_is_said_to_keep_rays_in_only_where_it_does(tmp_path):
+    """x and y offsets mixed across rays by a reshape (the blind set 1206a's 09/02): seeded or not, rays fall
+    outside the blur disc, so the unseeded call's failure does not say a seeded one keeps them in."""
+    from autograder.engine.runner import grade
+    from conftest import check_results, mutant
+
+    source = """
+        def simulate_aperture(points, f, aperture, n_rays=50, seed=None):
+            X = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+            rng = np.random.default_rng(seed)
+            radius = aperture * np.sqrt(rng.uniform(0.0, 1.0, (len(X), n_rays)))
+            angle = rng.uniform(0.0, 2.0 * np.pi, (len(X), n_rays))
+            ax, ay = radius * np.cos(angle), radius * np.sin(angle)
+            offsets = np.stack([ax, ay]).reshape(len(X), n_rays, 2)
+            ideal = f * X[:, :2] / X[:, 2:3]
+            return ideal[:, None, :] + offsets * (1.0 + f / X[:, 2])[:, None, None]
+        """
+    result = grade(mutant(tmp_path, "lab09_camera", source), ["lab09.ex4"], pictures="none", include_hidden=False)
+    [seeded] = [c for c in check_results(result, "lab09.ex4") if c.name.startswith("simulate_aperture is reproducible")]
+    assert not seeded.passed and "keeps them in" not in seeded.message, seeded.message
+
+
+_KEEPDIMS = (("    r2 = x * x + y * y\n", "    r2 = np.sum(pts ** 2, axis=1, keepdims=True)\n"),)

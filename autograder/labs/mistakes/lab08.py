@@ -50,6 +50,13 @@ _COMPOSE_FEATHERED = """
         """
 
 MISTAKES = {
+    # the blind set 1206a's 08/02: the adaptive count with math.log and no guard: every pair an inlier (w = 1) raises
+    # (four exact pairs are no refusal of the minimal set: twelve exact pairs raise too)
+    "homography_ransac taking math.log of 1 - w^4 unguarded": ("lab08.ex4", reference_def_with(
+        "lab08_homographies", "homography_ransac",
+        "needed = int(np.ceil(np.log(1 - confidence) / np.log(max(1 - w ** 4, 1e-12))))",
+        "import math\nneeded = int(np.ceil(math.log(1 - confidence) / math.log(1 - w ** 4)))"),
+        ["math.log takes a positive number only"]),
     # the blind set 1206a's 08/03: a list repeated by * holds one array, which @= changes for every image
     "stitch_many keeping one matrix n times ([np.eye(3)] * n) and updating it in place": ("lab08.ext2", """
         def stitch_many(images):
