@@ -29,7 +29,8 @@ from ..engine.compare import (at_precision, blurred_difference, closest, fill_fr
                        magnitude, projective_distance)
 from ..engine.forms import scale_form
 from ..engine.hints import Hint, Predicate, _path, calls, code_of, expr, mentions
-from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, format_matrix, name_mistake,
+from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, format_matrix,
+                             name_mistake, parameter_ignored,
                              name_correspondences_left_out, repeating_border, where_matrices_differ)
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
@@ -430,6 +431,9 @@ def weak_default(t):
                  probe=projection_probe(t, "weak_perspective_project"))
 
 
+SINGLE_POINT_DEPTH = "the depth given is not used for a single point"
+
+
 @ex2.check("weak_perspective_project with a given z_avg (a float, and a whole number); a single (3,) point",
            points=2)
 def weak_given(t):
@@ -444,9 +448,18 @@ def weak_given(t):
                  truth.weak_perspective(X, 300.0, 10.0), weak_mistakes(X, 300.0, 10.0))
     # the API's convention for (N, 3) functions: a (3,) point gives a (2,) result
     X = np.array([0.4, -0.3, 5.0])
-    judge_single_point(t, "weak_perspective_project((3,) point, f=300, z_avg=12.0)",
-                       t.call("weak_perspective_project", X, 300.0, z_avg=12.0),
-                       truth.weak_perspective(X, 300.0, 12.0)[0])
+    what = "weak_perspective_project((3,) point, f=300, z_avg=12.0)"
+    try:
+        judge_single_point(t, what, t.call("weak_perspective_project", X, 300.0, z_avg=12.0),
+                           truth.weak_perspective(X, 300.0, 12.0)[0])
+    except Fail as failure:
+        # (the many points took z_avg -- judged above --: a single point's own path may not)
+        if not failure.mistake and parameter_ignored(
+                lambda **kw: t.call("weak_perspective_project", X, 300.0, **kw), "z_avg", (12.0, 30.0)):
+            t.fail(measured(f"{what}: z_avg=12.0 and z_avg=30.0 give the same point, where the points given as an "
+                            "(N, 3) array take it: on a single (3,) point your code does not use z_avg"),
+                   mistake=SINGLE_POINT_DEPTH)
+        raise
     # (and with z_avg left out: the mean depth of one point is its own)
     judge_single_point(t, "weak_perspective_project((3,) point, f=300) with z_avg left out",
                        t.call("weak_perspective_project", X, 300.0), truth.weak_perspective(X[None], 300.0)[0])

@@ -20,6 +20,15 @@ _DECOMPOSE = """
         """
 
 MISTAKES = {
+    # the blind set 1206a's 10/05: a single point's own early return divides by its own depth, z_avg left unused
+    "weak_perspective_project ignoring z_avg for a single point": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            pts = np.asarray(points, dtype=np.float64)
+            if pts.ndim == 1:
+                return f * pts[:2] / pts[2]
+            depth = pts[:, 2].mean() if z_avg is None else float(z_avg)
+            return f / depth * pts[:, :2]
+        """, ["on a single (3,) point your code does not use z_avg"]),
     # the blind set 1206a's 10/06: the sheet's M^-1 written as an elementwise power
     "decompose_camera_matrix inverting M entry by entry (M ** -1)": ("lab10.ex5", """
         def decompose_camera_matrix(P):
