@@ -696,6 +696,9 @@ def other_cameras():
     K, R, tvec = _example_camera(33)
     P = truth.camera(K, R, tvec)
     cameras = [("2.5 * P", 2.5 * P, truth.world_points_for(K, R, tvec, seed=34, n=6))]
+    # (and a small one: a DLT's unit-norm P scaled down -- w is as small, and an epsilon added to it is not)
+    cameras.append(("1e-4 * P / |P| (a unit-norm P, scaled down)", 1e-4 * P / np.linalg.norm(P),
+                    truth.world_points_for(K, R, tvec, seed=41, n=6)))
     R, _ = truth.random_pose(37)
     cameras.append(("P of a camera at the world origin (t = 0, P[2, 3] = 0)", truth.camera(K, R, np.zeros(3)),
                     truth.world_points_for(K, R, np.zeros(3), seed=38, n=6)))
