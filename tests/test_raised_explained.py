@@ -606,6 +606,22 @@ def test_a_name_numpy_2_removed_is_told_at_its_line_with_its_replacement():
     assert _raised_at(source, 5, other) is None
 
 
+def test_an_alias_of_a_builtin_numpy_removed_is_told_with_the_builtin():
+    """`.astype(np.int)` (the blind set 1206b's 12/03): NumPy 1.24 removed the aliases of Python's types; the use
+    is told with the builtin its message names."""
+    source = """
+        import numpy as np
+
+        def f(u):
+            return np.floor(u).astype(np.int)
+        """
+    message = ("module 'numpy' has no attribute 'int'.\n`np.int` was a deprecated alias for the builtin `int`. To avoid "
+               "this error in existing code, use `int` by itself.")
+    form = _raised_at(source, 5, message)
+    assert form is not None and "uses `np.int` (line 5)" in form.sentence and "NumPy 1.24" in form.sentence \
+        and "write `int`" in form.sentence, form
+
+
 def test_a_float_that_is_no_size_is_not_told_as_one():
     """`np.full((h, w), mean / 2)`: the fill value may be a float; only the shape's names are followed."""
     source = """

@@ -162,6 +162,9 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     found = _REMOVED.search(message)
     if found:
         return _removed_name(fn, line, found.group(1), found.group(2))
+    found = _ALIAS_REMOVED.search(message)
+    if found:
+        return _removed_name(fn, line, found.group(1), found.group(2), release="1.24")
     found = _PAD_PAIRS.search(message)
     if found:
         return _pad_pairs(fn, line, *map(int, found.groups()))
@@ -352,15 +355,17 @@ def _local_read_first(fn, line: int, name: str) -> Form | None:
 
 
 _REMOVED = re.compile(r"`np\.(\w+)` was removed in the NumPy 2\.0 release\.\s*\w+ `([^`]+)` instead")
-REMOVED_NAME = "a name NumPy 2.0 removed"
+# (NumPy 1.24 removed the aliases of Python's own types: np.int, np.float, np.bool, np.object, np.str)
+_ALIAS_REMOVED = re.compile(r"`np\.(\w+)` was a deprecated alias for the builtin `(\w+)`")
+REMOVED_NAME = "a name NumPy removed"
 
 
-def _removed_name(fn, line: int, name: str, instead: str) -> Form | None:
-    """``np.<name>`` on the raising line, which NumPy 2.0 removed (its message says what replaces it)."""
+def _removed_name(fn, line: int, name: str, instead: str, release: str = "2.0") -> Form | None:
+    """``np.<name>`` on the raising line, which NumPy ``release`` removed (its message says what replaces it)."""
     for node in _own_nodes(fn):
         if isinstance(node, ast.Attribute) and node.attr == name and _path(node.value) in ("np", "numpy") \
                 and node.lineno <= line <= getattr(node, "end_lineno", node.lineno):
-            return Form(measured(f"your `{fn.name}` uses `{ast.unparse(node)}` (line {line}), a name NumPy 2.0 "
+            return Form(measured(f"your `{fn.name}` uses `{ast.unparse(node)}` (line {line}), a name NumPy {release} "
                                  f"removed (the grading's NumPy is {np.__version__}): write `{instead}`"), REMOVED_NAME)
     return None
 

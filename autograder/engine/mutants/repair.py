@@ -1690,10 +1690,29 @@ def _undoes_a_step(student, mutant, fix: Fix) -> bool:
     # (a test given its twin's half steers round the branch only where the twin says it must: the test is the slip)
     if fix.operator == "twin_test":
         return False
-    return student.steers_a_branch(mutant) or any(_identity_order(after) and not _identity_order(before)
-                                                  or _assigns_itself(after) for _, before, after in fix.changes) \
+    return student.steers_a_branch(mutant) or _neutralises_a_pair(student, mutant) \
+        or any(_identity_order(after) and not _identity_order(before)
+               or _assigns_itself(after) for _, before, after in fix.changes) \
         or (fix.operator == "drop_statement" and fix.changes[0][1].startswith("if ") and " ... (lines " in fix.changes[0][1]
             and not student.extra_block(mutant))
+
+
+def _neutralises_a_pair(student, mutant) -> bool:
+    """Whether a change makes a value neutral (1, 0) that the def reads at two places or more -- a scale applied,
+    then undone (`norms = np.linalg.norm(A, axis=0)` dividing A's columns and multiplying the solution): both steps
+    then do nothing, the slip in one of them stays (`z * norms` where `z / norms` undoes the scaling)."""
+    if len(mutant.edits) != 1 or mutant.edits[0][2] != "neutral":
+        return False
+    where, ordinal = mutant.edits[0][:2]
+    fn = student._defs.get(where)
+    nodes, parents = student._walk(where)
+    node = nodes[ordinal] if fn is not None and 0 <= ordinal < len(nodes) else None
+    statement = parents.get(id(node), (None,))[0] if node is not None else None
+    if not (isinstance(statement, ast.Assign) and statement.value is node and len(statement.targets) == 1
+            and isinstance(statement.targets[0], ast.Name)):
+        return False
+    name = statement.targets[0].id
+    return sum(isinstance(n, ast.Name) and n.id == name and isinstance(n.ctx, ast.Load) for n in ast.walk(fn)) >= 2
 
 
 def _one_argument_twice(fix: Fix) -> bool:
