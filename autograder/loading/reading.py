@@ -256,6 +256,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _safely(_row_norm_of_whole_matrix, name, function)
     found += _safely(_same_array_appended, name, function)
     found += _safely(_one_object_repeated, name, function)
+    found += _safely(_comparison_as_a_statement, name, function)
     found += _safely(_running_best_overwritten, name, function)
     found += _safely(_rolled_strip_one_sign, name, function)
     found += _safely(_scaled_in_place_per_turn, name, function)
@@ -1358,6 +1359,20 @@ def _makes_a_container(node) -> bool:
         or (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("list", "dict"))
 
 
+def _comparison_as_a_statement(name, function) -> list[Finding]:
+    """``M[0, 1] == s`` written as a statement of its own: a comparison whose result nothing keeps, where an
+    assignment (``=``) was meant -- the entry keeps its value."""
+    for node in _nodes(function):
+        if isinstance(node, ast.Expr) and isinstance(node.value, ast.Compare) and len(node.value.ops) == 1 \
+                and isinstance(node.value.ops[0], ast.Eq) and isinstance(node.value.left, (ast.Name, ast.Subscript)):
+            target = ast.unparse(node.value.left)
+            return [Finding(name, _line(node), "a comparison written where an assignment belongs", certain=True,
+                            sentence=f"{name} (line {_line(node)}) writes `{ast.unparse(node.value)[:60]}` as a "
+                                     f"statement: == compares and nothing keeps the answer, so `{target}` keeps its "
+                                     f"value; = assigns (`{target} = {ast.unparse(node.value.comparators[0])[:40]}`)")]
+    return []
+
+
 def _one_object_repeated(name, function) -> list[Finding]:
     """``Hs = [np.eye(3)] * n`` (or ``grid = [[0] * w] * h``) and an item changed in place (``Hs[k] @= step``,
     ``grid[i][j] = v``): a list repeated by ``*`` holds the one object n times, so the change is every item's.
@@ -1516,8 +1531,26 @@ def _running_best_overwritten(name, function) -> list[Finding]:
 def _made_as_arrays(made: dict) -> set[str]:
     """Of :func:`_assigned_names`' names, those every assignment makes an array or list (a call, a subscript, a
     list): an int's `j += 1` binds anew, it changes nothing shared."""
-    return {target for target, values in made.items()
-            if values and all(isinstance(v, (ast.Call, ast.Subscript, ast.List, ast.ListComp)) for v in values)}
+    return {target for target, values in made.items() if values and all(_array_or_list(v) for v in values)}
+
+
+def _a_list(value) -> bool:
+    """A list written out, made by a comprehension, or lists joined by +."""
+    if isinstance(value, ast.BinOp) and isinstance(value.op, ast.Add):
+        return _a_list(value.left) and _a_list(value.right)
+    return isinstance(value, (ast.List, ast.ListComp))
+
+
+def _array_or_list(value) -> bool:
+    """A call, a subscript, a list, or lists joined (`["0" + c for c in codes] + [...]`)."""
+    if isinstance(value, ast.BinOp) and isinstance(value.op, ast.Add):
+        return _array_or_list(value.left) and _array_or_list(value.right) \
+            and not isinstance(value.left, ast.Call) and not isinstance(value.right, ast.Call)
+    return isinstance(value, (ast.Call, ast.Subscript, ast.List, ast.ListComp))
+
+
+# methods that change their list or array in place (and return None)
+_IN_PLACE_METHODS = frozenset({"reverse", "sort", "append", "extend", "insert", "remove", "clear", "fill", "resize"})
 
 
 def _alias_changed(name, function) -> list[Finding]:
@@ -1538,7 +1571,7 @@ def _alias_changed(name, function) -> list[Finding]:
     made = _assigned_names(function)
     # (and lists: `row_x = [x, y, 1, 0, 0, 0]` is as shared by `row_y = row_x`)
     arrays = _made_as_arrays(made) - counters
-    lists = {target for target in arrays if all(isinstance(v, (ast.List, ast.ListComp)) for v in made[target])}
+    lists = {target for target in arrays if all(_a_list(v) for v in made[target])}
     statements = _statements_in_order(function)
     aliases = {}   # alias -> (original, line bound, bound in a loop)
     for statement in statements:
@@ -1554,6 +1587,9 @@ def _alias_changed(name, function) -> list[Finding]:
         if isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0],
                                                                                           ast.Subscript):
             changed = statement.targets[0].value
+        if isinstance(statement, ast.Expr) and isinstance(statement.value, ast.Call) \
+                and isinstance(statement.value.func, ast.Attribute) and statement.value.func.attr in _IN_PLACE_METHODS:
+            changed = statement.value.func.value   # (`mirrored.reverse()`, `b.sort()`, `b.append(x)`)
         if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
                 and isinstance(statement.targets[0], (ast.Tuple, ast.List)):
             # (`row_y[:3], row_y[3:] = zeros, xy1`: parts written together)

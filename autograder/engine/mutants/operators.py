@@ -81,7 +81,8 @@ OPERATORS = {
     "clip_range": ("clip", "range", "stretch", "normali"),    # (student only) cv2.normalize(x, None, 0, 255, NORM_MINMAX) -> np.clip(x, 0, 255)
     "cross_multiply": ("ratio", "divid", "zero", "product"),   # (student only) a / b < r -> a < r * b
     "stack_window": ("window", "axis", "volume", "stack"),
-    "per_image": ("image", "stack", "each", "slice"),           # (student only) cv2.blur(v, k) -> each image of v      # (student only) uniform_filter(v, size=k) -> size=(1, k, k)
+    "per_image": ("image", "stack", "each", "slice"),
+    "flip_reduction": ("all", "any", "negat", "every", "some"),   # (student only) ~np.all(x) -> np.any(x)           # (student only) cv2.blur(v, k) -> each image of v      # (student only) uniform_filter(v, size=k) -> size=(1, k, k)
     "square_window": ("window", "block", "square", "strip"),     # (student only) (k, 1) -> (k, k) in a call           # (student only) np.tile(a, n) <-> np.repeat(a, n)
     "math_numpy": ("math", "numpy", "array", "number"),           # (student only) math.pow(x, 2) -> np.power(x, 2)   # (student only) f(xr, yr) -> f(x, y), xr = x * k   # (student only) img.shape[::-1] -> img.shape[1::-1]   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
@@ -788,6 +789,26 @@ def _make_math_numpy(node, payload):
     new = copy.deepcopy(node)   # math.pow(r2, 2) -> np.power(r2, 2)
     new.func = _name("np." + _MATH_TO_NUMPY[_dotted(node.func)[5:]])
     return new
+
+
+def _negated_reduction(node):
+    """The all()/any() call a ``~``/``not`` negates (`~np.all(x, axis=0)`, `not x.any()`), or None."""
+    if not (isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.Invert, ast.Not))
+            and isinstance(node.operand, ast.Call)):
+        return None
+    called = _dotted(node.operand.func).rsplit(".", 1)[-1]
+    return node.operand if called in ("all", "any") else None
+
+
+def _make_flip_reduction(node, payload):
+    """~np.all(x, ...) -> np.any(x, ...), ~x.any() -> x.all(): the negation dropped and the reduction turned."""
+    call = copy.deepcopy(_negated_reduction(node))
+    func = call.func
+    if isinstance(func, ast.Attribute):
+        func.attr = "any" if func.attr == "all" else "all"
+    else:
+        call.func = ast.Name("any" if func.id == "all" else "all", ast.Load())
+    return call
 
 
 def _parameters_for_identity(node, parents) -> list[str]:
@@ -1840,7 +1861,7 @@ _MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_las
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
          "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
-         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "source_names": _make_source_names, "tile_repeat": _make_tile_repeat, "square_window": _make_square_window, "stack_window": _make_stack_window, "per_image": _make_per_image, "cross_multiply": _make_cross_multiply, "clip_range": _make_clip_range, "flip_axis": _make_flip_axis, "row_kron": _make_row_kron, "math_numpy": _make_math_numpy, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
+         "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "source_names": _make_source_names, "tile_repeat": _make_tile_repeat, "square_window": _make_square_window, "stack_window": _make_stack_window, "per_image": _make_per_image, "flip_reduction": _make_flip_reduction, "cross_multiply": _make_cross_multiply, "clip_range": _make_clip_range, "flip_axis": _make_flip_axis, "row_kron": _make_row_kron, "math_numpy": _make_math_numpy, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
          "int_division": _make_int_division, "drop_division": _make_drop_division,
@@ -3443,6 +3464,10 @@ def _student_changes(node, parent, parents, words):
         # an identity written where a matrix the function is given belongs (cv2.initUndistortRectifyMap's
         # new camera matrix np.eye(3), where K keeps the image's pixels)
         yield "other_name", parameter, ""
+    if _negated_reduction(node) is not None:
+        # a negated all() where any() belongs (De Morgan's rule half applied: `~np.all(bits, axis=0)` is "not every
+        # image lit", where "some image lit" was meant), and the other way round
+        yield "flip_reduction", None, ""
     if _filters_a_made_stack(node, parents):
         # an image filter given a whole stack the def made (D, H, W) at once: OpenCV reads its last axis as
         # channels and filters across the first two -- each image of the stack on its own is meant
