@@ -552,14 +552,15 @@ OUTSIDE_DOMAIN = "a math function given a number outside the numbers it takes"
 # math's functions by what they take, and what to do where a value can reach the edge
 _DOMAINS = {
     **dict.fromkeys(("log", "log2", "log10"), ("a positive number", "0 or negative",
-                                               "where it can reach 0 (a ratio of 1, say), keep it above 0 or treat "
-                                               "that case apart")),
-    "log1p": ("a number above -1", "-1 or below", "keep it above -1"),
-    "sqrt": ("a number >= 0", "negative", "a rounding error can take a value that is 0 just below it: clip it at 0"),
+                                               from_code("where it can reach 0 (a ratio of 1, say), keep it above 0 "
+                                                         "or treat that case apart"))),
+    "log1p": ("a number above -1", "-1 or below", from_code("keep it above -1")),
+    "sqrt": ("a number >= 0", "negative", from_code("a rounding error can take a value that is 0 just below it: "
+                                                           "clip it at 0")),
     **dict.fromkeys(("acos", "asin"), ("a number from -1 to 1", "outside it",
-                                       "a rounding error can take a cosine just past 1: clip it to [-1, 1]")),
-    "acosh": ("a number >= 1", "below 1", "clip it at 1"),
-    "atanh": ("a number strictly between -1 and 1", "outside it", "keep it inside"),
+                                       from_code("a rounding error can take a cosine just past 1: clip it to [-1, 1]"))),
+    "acosh": ("a number >= 1", "below 1", from_code("clip it at 1")),
+    "atanh": ("a number strictly between -1 and 1", "outside it", from_code("keep it inside")),
 }
 
 

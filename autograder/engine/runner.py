@@ -1054,7 +1054,10 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         # comes first; then a change of their code confirmed to mend the exception (a change that mends the
         # inputs tried may still be no fix: `log(1 - w)` made `log(1 + w)`), and only then the NumPy forms'
         # reading of its message, which guesses which operand is wrong ("keep it a column").
-        verdict = _told_exception(verdict, _explained_from_the_line(trial, tb))
+        # (an OpenCV error's reading says what the call was given, which the slip upstream -- a test of the other
+        # image -- may explain better: a change confirmed comes first there, as for the NumPy forms)
+        if "OpenCV(" not in str(verdict.message):
+            verdict = _told_exception(verdict, _explained_from_the_line(trial, tb))
         if not verdict.mistake:
             verdict = _named_by_repair(verdict, check, trial, tb)
     if student_failure == "exception" and not verdict.mistake:

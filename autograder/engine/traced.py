@@ -548,6 +548,9 @@ def _assigned_named(recording, statement, given, into, where, fn=None) -> Form |
                                      f"counts from the end of the axis: {_quote(target)} is then "
                                      f"{_shape_text(into)}, for a value of shape {_shape_text(given)}", MISTAKE)
         said = f"{_quote(target)} {where} has shape {_shape_text(into)} and is given a value of shape {_shape_text(given)}"
+        bounds = [(b, recording.number(b)) for b in _slice_bounds(target.slice)]
+        known = [f"{_quote(b)} = {v:g}" for b, v in bounds if v is not None and not isinstance(b, ast.Constant)]
+        said += f" ({', '.join(known[:4])})" if known else ""
         for sliced in (n for n in ast.walk(statement.value) if isinstance(n, ast.Subscript)):
             # (the value's own slice given a negative bound: `right[:, :width - d]` with d past the width keeps
             # all but the last columns, where none were meant)
@@ -556,9 +559,6 @@ def _assigned_named(recording, statement, given, into, where, fn=None) -> Form |
                 if value is not None and value < 0 and not _written_negative(bound):
                     return Form(f"{said}: {_quote(bound)} is {value:g} here, and a negative slice bound counts from "
                                 f"the end of the axis, so {_quote(sliced)} keeps entries where none were meant", MISTAKE)
-        bounds = [(b, recording.number(b)) for b in _slice_bounds(target.slice)]
-        known = [f"{_quote(b)} = {v:g}" for b, v in bounds if v is not None and not isinstance(b, ast.Constant)]
-        said += f" ({', '.join(known[:4])})" if known else ""
         # (an array made without the value's last axis -- a grey canvas for a colour image: where it was made)
         made = _last_given(fn, target.value.id, statement.lineno) \
             if fn is not None and isinstance(target.value, ast.Name) and len(given) > len(into) else None

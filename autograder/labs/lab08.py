@@ -2821,11 +2821,11 @@ SECOND_WARP_HINT = Hint(
     instead="your code already {found}; the error is elsewhere: compare how the pixels only img2 "
             "covers are written with the truth (brightness, blending with the empty canvas)")
 # (where those pixels do not even follow the truth's, they are not dimmed or blended, which keeps them in step)
-SECOND_WARP_PLACE_HINT = replace(
-    SECOND_WARP_HINT, instead="your code already {found}; the error is elsewhere: the pixels only img2 covers do not "
-                              "follow the truth's (a change of brightness, or a blend with the empty canvas, would "
-                              "keep them in step): look at where they come from, the H itself (from which matches, "
-                              "and what is done to it before the warp)")
+SECOND_WARP_PLACE_HINT = Hint(
+    SECOND_WARP_HINT.text, asks=SECOND_WARP_HINT.asks,
+    instead="your code already {found}; the error is elsewhere: the pixels only img2 covers do not follow the truth's "
+            "(a change of brightness, or a blend with the empty canvas, would keep them in step): look at where they "
+            "come from, the H itself (from which matches, and what is done to it before the warp)")
 IN_STEP = 0.9   # correlation with the truth's pixels above which a region is the truth made brighter or darker
 
 

@@ -730,7 +730,7 @@ def judge_decomposition(t: Trial, P, K_true, R_true, t_true, what="decompose_cam
         # fixed after the factoring are not the cause, whatever they are: an entrywise M ** -1 for M^-1, say)
         problems.append("det(R) = -1, and " + measured("K R is not P[:, :3] (nor -P[:, :3]) at any scale: K and R "
                                                        "do not factor the block given")
-                        + where_to_look("; look at what the factoring step is given"))
+                        + where_to_look(measured("; look at what the factoring step is given")))
     elif np.linalg.det(R) < 0 and not unsigned:   # with K's signs unfixed, det(R) = -1 follows from them
         flips = SIGNS_HINT.contradicts(code_of(t), ["decompose_camera_matrix"]) \
             and not FLIPS_BOTH_SIDES.found(code_of(t).reachable(["decompose_camera_matrix"]))

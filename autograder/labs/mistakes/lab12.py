@@ -507,8 +507,7 @@ MISTAKES = {
             d = np.asarray(disparity, dtype=np.float64)
             d[~(d > 0)] = np.nan
             depth = f * baseline / d
-            depth[np.isnan(depth)] = 0.0
-            return depth
+            return np.where(np.isnan(depth), 0.0, depth)
         """, ["writes into the caller's `disparity` in place", "0 became nan", "shows or uses `disparity` after"]),
     "disparity xr - xl": ("lab12.ex2", """
         def disparity_from_matches(xl, xr):
