@@ -5424,3 +5424,18 @@ def test_an_identity_given_to_opencv_is_offered_the_matrices_the_function_is_giv
     assert any("np.eye(3)" in before and after.endswith("K, (w, h), cv2.CV_32FC1)") or (before, after) == ("np.eye(3)", "K")
                for before, after in changes), changes
     assert ("(maps, np.eye(3))", "(maps, K)") not in changes, changes
+
+
+def test_a_negated_all_where_any_belongs_is_a_change_tried():
+    """`~np.all(bits, axis=0)` for the pixels lit in some image (the blind set 1206b's 12/06: De Morgan's rule half
+    applied) is offered `np.any(bits, axis=0)`, and `not x.any()` is offered `x.all()`; an all() not negated is not."""
+    changes = _changes_of("""
+        def graded(bits, x):
+            decodable = ~np.all(bits, axis=0)
+            empty = not x.any()
+            full = np.all(bits)
+            return decodable, empty, full
+    """, "flip_reduction")
+    assert ("~np.all(bits, axis=0)", "np.any(bits, axis=0)") in changes, changes
+    assert ("empty = not x.any()", "empty = x.all()") in changes, changes
+    assert not any(before == "np.all(bits)" for before, _ in changes), changes

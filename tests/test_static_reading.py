@@ -1770,3 +1770,37 @@ def test_a_loop_value_never_used_is_not_told_as_items_left_unchanged():
             return images
         """)
     assert "a value assigned to the loop variable and dropped" in dropped
+
+
+def test_a_comparison_written_as_a_statement_is_read():
+    """`M[0, 1] == s` on a line of its own (the blind set 1206b's 07/06): nothing keeps the comparison, the entry
+    keeps its value; a comparison that is kept (assigned, returned, tested) is not read as one."""
+    assert "a comparison written where an assignment belongs" in one("""
+        def f(s):
+            M = np.eye(3)
+            M[0, 1] == s
+            return M
+        """)
+    assert "a comparison written where an assignment belongs" not in one("""
+        def f(s):
+            same = s == 0
+            if s == 1:
+                return same
+            return s == 2
+        """)
+
+
+def test_an_alias_reversed_or_sorted_in_place_changes_the_list_it_names():
+    """`mirrored = codes; mirrored.reverse()` (the blind set 1206b's 12/04): a method that changes a list in place
+    changes the list both names hold; a copy taken first is not read as one."""
+    source = """
+        def f(n):
+            codes = ["0", "1"]
+            for _ in range(n - 1):
+                mirrored = codes
+                mirrored.reverse()
+                codes = ["0" + c for c in codes] + ["1" + c for c in mirrored]
+            return codes
+        """
+    assert "an alias of an array is changed in place" in one(source)
+    assert "an alias of an array is changed in place" not in one(source.replace("mirrored = codes", "mirrored = codes[:]"))

@@ -6,6 +6,34 @@ the words its diagnosis must contain (read by ``autograder verify``; see
 from . import reference_def_with
 
 MISTAKES = {
+    # the blind set 1206b's 07/06: `M[0, 1] == s` as a statement leaves the identity
+    "shear_matrix comparing the entry with s where it assigns it": ("lab07.ex4", """
+        def shear_matrix(s):
+            M = np.eye(3)      # identity: y' = y, no translation
+            M[0, 1] == s       # x' = x + s*y
+            return M
+        """, ['== compares and nothing keeps the answer']),
+    # the blind set 1206b's 07/04: z = D p solved on A D^-1, then p = z * D where z / D undoes it (norms made 1 mends by compensation)
+    "affine_lstsq undoing its column scaling by multiplying again": ("lab07.ex6", """
+        def affine_lstsq(src, dst):
+            src = np.asarray(src, dtype=np.float64).reshape(-1, 2)
+            dst = np.asarray(dst, dtype=np.float64).reshape(-1, 2)
+            rows, rhs = [], []
+            for (x, y), (xp, yp) in zip(src, dst):
+                rows.append([x, y, 1.0, 0.0, 0.0, 0.0])
+                rhs.append(xp)
+                rows.append([0.0, 0.0, 0.0, x, y, 1.0])
+                rhs.append(yp)
+            A = np.array(rows)
+            b = np.array(rhs)
+            # Column equilibration: the coordinate columns (hundreds of pixels) and the
+            # columns of ones differ by orders of magnitude. Solve (A D^-1) z = b for the
+            # scaled unknowns z = D p, D = diag(column norms), then undo the scaling.
+            norms = np.linalg.norm(A, axis=0)
+            z, *_ = np.linalg.lstsq(A / norms, b, rcond=None)
+            params = z * norms
+            return params.reshape(2, 3)
+        """, ['to `params = z / norms`']),
     # the blind set 1206a's 07/02: lstsq solves src_c @ X = dst_c, so X is the linear part transposed
     "affine_lstsq using lstsq's solution untransposed as the linear part": ("lab07.ex6", """
         def affine_lstsq(src, dst):

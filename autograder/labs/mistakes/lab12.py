@@ -34,6 +34,44 @@ _DP = """
 """
 
 MISTAKES = {
+    # the blind set 1206b's 12/04: `mirrored = codes; mirrored.reverse()` reverses the codes too
+    "gray_code_patterns reversing an alias of the codes in place": ("lab12.ex6", """
+        def gray_code_patterns(width, n_bits):
+            width, n_bits = int(width), int(n_bits)
+            # binary-reflected Gray codes as bit strings, most significant bit first:
+            # G(n) = '0' + each code of G(n-1), then '1' + each code of G(n-1) in reverse order
+            codes = ["0", "1"]
+            for _ in range(n_bits - 1):
+                mirrored = codes
+                mirrored.reverse()
+                codes = ["0" + c for c in codes] + ["1" + c for c in mirrored]
+            patterns = np.zeros((n_bits, width), dtype=np.uint8)
+            for u in range(width):
+                k = u * 2 ** n_bits // width          # stripe of column u
+                for i, bit in enumerate(codes[k]):
+                    if bit == "1":
+                        patterns[i, u] = 255
+            return patterns
+        """, ['made it another name for the same list']),
+    # the blind set 1206b's 12/03: an alias of a builtin NumPy no longer has
+    "simulate_structured_light converting with np.int (removed in NumPy 1.24)": ("lab12.ex6", """
+        def simulate_structured_light(depth, f, baseline, n_bits):
+            Z = np.asarray(depth, dtype=np.float64)
+            height, width = Z.shape
+            n_bits = int(n_bits)
+            pat = gray_code_patterns(width, n_bits)
+            ok = np.isfinite(Z) & (Z > 0)
+            disp = np.zeros_like(Z)
+            disp[ok] = float(f) * float(baseline) / Z[ok]
+            u = np.arange(width)[None, :]
+            col = np.floor(u - disp + 0.5).astype(np.int)      # round(u - f b / Z)
+            # a column off the projector lights nothing
+            ok = ok & (col >= 0) & (col < width)
+            images = np.zeros((n_bits, height, width), dtype=np.uint8)
+            for i in range(n_bits):
+                images[i][ok] = pat[i][col[ok]]
+            return images
+        """, ['a name NumPy 1.24 removed']),
     # the blind set 1206a's 12/04: u * 2 ** n_bits wraps past 65535
     "gray_code_patterns counting the columns in uint16": ("lab12.ex6", """
         def gray_code_patterns(width, n_bits):
