@@ -80,9 +80,9 @@ OPERATORS = {
     "flip_axis": ("flip", "mirror", "axis", "rows"),          # (student only) np.fliplr(x) <-> np.flipud(x), cv2.flip(x, 0) <-> 1
     "clip_range": ("clip", "range", "stretch", "normali"),    # (student only) cv2.normalize(x, None, 0, 255, NORM_MINMAX) -> np.clip(x, 0, 255)
     "cross_multiply": ("ratio", "divid", "zero", "product"),   # (student only) a / b < r -> a < r * b
-    "stack_window": ("window", "axis", "volume", "stack"),
-    "per_image": ("image", "stack", "each", "slice"),
-    "flip_reduction": ("all", "any", "negat", "every", "some"),   # (student only) ~np.all(x) -> np.any(x)           # (student only) cv2.blur(v, k) -> each image of v      # (student only) uniform_filter(v, size=k) -> size=(1, k, k)
+    "stack_window": ("window", "axis", "volume", "stack"),      # (student only) uniform_filter(v, size=k) -> size=(1, k, k)
+    "per_image": ("image", "stack", "each", "slice"),           # (student only) cv2.blur(v, k) -> each image of v
+    "flip_reduction": ("all", "any", "negat", "every", "some"),   # (student only) ~np.all(x) -> np.any(x)
     "square_window": ("window", "block", "square", "strip"),     # (student only) (k, 1) -> (k, k) in a call           # (student only) np.tile(a, n) <-> np.repeat(a, n)
     "math_numpy": ("math", "numpy", "array", "number"),           # (student only) math.pow(x, 2) -> np.power(x, 2)   # (student only) f(xr, yr) -> f(x, y), xr = x * k   # (student only) img.shape[::-1] -> img.shape[1::-1]   # (student only) pts1[0, 1] -> pts1[i, 1] in a loop over i   # (student only) int("".join(bits)) -> int(..., 2)
     # Changes of the student's own code only (:mod:`.repair`: each undoes a slip a student makes).
@@ -811,6 +811,13 @@ def _make_flip_reduction(node, payload):
     return call
 
 
+def _enclosing_def(node, parents):
+    """The def holding ``node`` (through the parents' map), or None."""
+    while id(node) in parents and not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+        node = parents[id(node)][0]
+    return node if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) else None
+
+
 def _parameters_for_identity(node, parents) -> list[str]:
     """The def's parameters an identity given to an OpenCV call (`np.eye(3)`, `np.identity(3)`) may stand for."""
     if not (isinstance(node, ast.Call) and _dotted(node.func) in ("np.eye", "numpy.eye", "np.identity", "numpy.identity")
@@ -819,10 +826,8 @@ def _parameters_for_identity(node, parents) -> list[str]:
     call = parents[id(node)][0]
     if not (isinstance(call, ast.Call) and _dotted(call.func).startswith(("cv2.", "cv."))):
         return []
-    scope = call
-    while id(scope) in parents and not isinstance(scope, (ast.FunctionDef, ast.AsyncFunctionDef)):
-        scope = parents[id(scope)][0]
-    if not isinstance(scope, (ast.FunctionDef, ast.AsyncFunctionDef)):
+    scope = _enclosing_def(call, parents)
+    if scope is None:
         return []
     given = {n.id for n in ast.walk(call) if isinstance(n, ast.Name)}
     return [a.arg for a in (*scope.args.posonlyargs, *scope.args.args) if a.arg in given][:3]
@@ -841,10 +846,8 @@ def _filters_a_made_stack(node, parents) -> bool:
     if not (called.startswith(("cv2.", "cv.")) and called.rsplit(".", 1)[-1] in _IMAGE_FILTERS) \
             and not (isinstance(node.func, ast.Name) and node.func.id.startswith("_")):
         return False
-    scope = node
-    while id(scope) in parents and not isinstance(scope, (ast.FunctionDef, ast.AsyncFunctionDef)):
-        scope = parents[id(scope)][0]
-    if not isinstance(scope, (ast.FunctionDef, ast.AsyncFunctionDef)):
+    scope = _enclosing_def(node, parents)
+    if scope is None:
         return False
     name = node.args[0].id
     for statement in ast.walk(scope):
