@@ -669,3 +669,13 @@ def test_a_math_domain_error_is_not_told_where_which_call_raised_is_not_known():
             return math.acos(c / 2) + 1
         """, 4, (np.array([3.0]),))
     assert form is not None and "from -1 to 1" in form.sentence, form
+
+
+def test_a_math_domain_error_beside_a_power_is_not_told():
+    """`math.log(a) + math.pow(b, 0.5)`: math.pow raises the same error for a negative base, so which call raised is
+    not known and neither is told."""
+    assert _domain("""
+        import math
+        def f(a, b):
+            return math.log(a) + math.pow(b, 0.5)
+        """, 4, (np.float64(1.0), np.float64(-2.0))) is None

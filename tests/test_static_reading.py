@@ -1804,3 +1804,20 @@ def test_an_alias_reversed_or_sorted_in_place_changes_the_list_it_names():
         """
     assert "an alias of an array is changed in place" in one(source)
     assert "an alias of an array is changed in place" not in one(source.replace("mirrored = codes", "mirrored = codes[:]"))
+
+
+def test_a_comparison_of_a_whole_value_and_a_list_grown_through_another_name_are_not_read():
+    """`result.shape == (3,)` or `x == 5` left from debugging writes nothing whatever was meant, and `rows = out;
+    rows.append(x)` grows the list both names hold, as is often meant: neither is read as a slip."""
+    found = one("""
+        def f(x, out):
+            result = np.zeros(3)
+            result.shape == (3,)
+            x == 5
+            rows = out
+            for v in range(3):
+                rows.append(v)
+            return result, out
+        """)
+    assert "a comparison written where an assignment belongs" not in found
+    assert "an alias of an array is changed in place" not in found

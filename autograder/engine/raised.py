@@ -564,6 +564,10 @@ _DOMAINS = {
 }
 
 
+# math's other functions that raise the same error for some arguments (not told: their domains take two numbers)
+_OTHER_DOMAINS = frozenset({"pow", "fmod", "remainder", "gamma", "lgamma", "ldexp", "dist", "hypot"})
+
+
 def _math_domain(fn, line: int, given: dict) -> Form | None:
     """The one call of :mod:`math` on the raising line whose argument can leave what it takes
     (``math.log(1 - w ** 4)`` with w = 1; ``math.log(1 - confidence)`` beside it is worked out from the
@@ -572,6 +576,8 @@ def _math_domain(fn, line: int, given: dict) -> Form | None:
     calls = []
     for call in _every_call_on_line(fn, line):
         name = _path(call.func).rsplit(".", 1)[-1]
+        if _path(call.func).startswith("math.") and name in _OTHER_DOMAINS:
+            return None   # (math.pow(-1, 0.5) raises the same error: which call did is not known)
         if not (_path(call.func).startswith("math.") and name in _DOMAINS and call.args):
             continue
         value = _number(call.args[0], known)

@@ -696,8 +696,9 @@ def other_cameras():
     K, R, tvec = _example_camera(33)
     P = truth.camera(K, R, tvec)
     cameras = [("2.5 * P", 2.5 * P, truth.world_points_for(K, R, tvec, seed=34, n=6))]
-    # (and a small one: a DLT's unit-norm P scaled down -- w is as small, and an epsilon added to it is not)
-    cameras.append(("1e-4 * P / |P| (a unit-norm P, scaled down)", 1e-4 * P / np.linalg.norm(P),
+    # (and a small one, as a DLT returns it: P / |P|, its w about 1e-3 -- an epsilon added to w is not small beside
+    # it, where a guard against w near 0 of up to 1e-4 still lets every point through)
+    cameras.append(("P / |P| (a unit-norm P, as a DLT returns it)", P / np.linalg.norm(P),
                     truth.world_points_for(K, R, tvec, seed=41, n=6)))
     R, _ = truth.random_pose(37)
     cameras.append(("P of a camera at the world origin (t = 0, P[2, 3] = 0)", truth.camera(K, R, np.zeros(3)),

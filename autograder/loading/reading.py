@@ -1360,11 +1360,12 @@ def _makes_a_container(node) -> bool:
 
 
 def _comparison_as_a_statement(name, function) -> list[Finding]:
-    """``M[0, 1] == s`` written as a statement of its own: a comparison whose result nothing keeps, where an
-    assignment (``=``) was meant -- the entry keeps its value."""
+    """``M[0, 1] == s`` written as a statement of its own: a comparison of an entry whose result nothing keeps,
+    where an assignment (``=``) was meant -- the entry keeps its value."""
     for node in _nodes(function):
+        # (an entry's: `result.shape == (3,)` or `x == 5`, a check left from debugging, writes nothing anyway)
         if isinstance(node, ast.Expr) and isinstance(node.value, ast.Compare) and len(node.value.ops) == 1 \
-                and isinstance(node.value.ops[0], ast.Eq) and isinstance(node.value.left, (ast.Name, ast.Subscript)):
+                and isinstance(node.value.ops[0], ast.Eq) and isinstance(node.value.left, ast.Subscript):
             target = ast.unparse(node.value.left)
             return [Finding(name, _line(node), "a comparison written where an assignment belongs", certain=True,
                             sentence=f"{name} (line {_line(node)}) writes `{ast.unparse(node.value)[:60]}` as a "
@@ -1549,8 +1550,9 @@ def _array_or_list(value) -> bool:
     return isinstance(value, (ast.Call, ast.Subscript, ast.List, ast.ListComp))
 
 
-# methods that change their list or array in place (and return None)
-_IN_PLACE_METHODS = frozenset({"reverse", "sort", "append", "extend", "insert", "remove", "clear", "fill", "resize"})
+# methods that reorder or overwrite their list or array in place (and return None); growing a list through another
+# name for it (`rows = out; rows.append(x)`) is as often meant as not, and is not read
+_IN_PLACE_METHODS = frozenset({"reverse", "sort", "fill"})
 
 
 def _alias_changed(name, function) -> list[Finding]:
@@ -1589,7 +1591,7 @@ def _alias_changed(name, function) -> list[Finding]:
             changed = statement.targets[0].value
         if isinstance(statement, ast.Expr) and isinstance(statement.value, ast.Call) \
                 and isinstance(statement.value.func, ast.Attribute) and statement.value.func.attr in _IN_PLACE_METHODS:
-            changed = statement.value.func.value   # (`mirrored.reverse()`, `b.sort()`, `b.append(x)`)
+            changed = statement.value.func.value   # (`mirrored.reverse()`, `b.sort()`, `b.fill(0)`)
         if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
                 and isinstance(statement.targets[0], (ast.Tuple, ast.List)):
             # (`row_y[:3], row_y[3:] = zeros, xy1`: parts written together)
