@@ -87,7 +87,12 @@ def how_changed(before, after) -> str:
         offset = b - a
         rows = offset.reshape(len(offset), -1) if offset.ndim > 1 else offset[:, None]
         if offset.ndim and np.allclose(rows, rows[:1], rtol=0, atol=1e-12 * max(1.0, float(np.abs(b).max()))):
-            return "shifts (subtracts the same offset from every row of)"
+            added = -rows[0]
+            if added.size <= 4:   # (the offset itself, as the call added it: `pts2[:, 0] += w1` is "adds [400, 0]")
+                shown = ", ".join(f"{value + 0.0:.4g}" for value in added)   # (+ 0.0: no "-0")
+                return f"shifts (adds {shown} to every entry of)" if offset.ndim == 1 else \
+                    f"shifts (adds [{shown}] to every row of)"
+            return "shifts (adds the same offset to every row of)"
     return "writes into"
 
 

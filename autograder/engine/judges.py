@@ -981,9 +981,11 @@ def fail_if_front_points_not_given(t: Trial, what: str, got, expected, P1, P2, p
         null_w = "the fourth entry w of the SVD's null vector is negative (SVD gives v and -v alike: its sign " \
                  "says nothing of the depth, which is w's sign times the sign of the third coordinate of P X)"
         rules[null_w] = _null_vector_w(P1, P2, given1, given2, False) < 0
-        shared = next((words for words, rule in rules.items() if np.array_equal(rule, lost)), "")
-        if not shared and np.array_equal(_null_vector_w(P1, P2, given1, given2, True) < 0, lost):
-            shared = null_w
+        fitting = [words for words, rule in rules.items() if np.array_equal(rule, lost)]
+        if not fitting and np.array_equal(_null_vector_w(P1, P2, given1, given2, True) < 0, lost):
+            fitting = [null_w]
+        # (two tests that mark the same points on this input: neither is told -- another input tells them apart)
+        shared = fitting[0] if len(fitting) == 1 else ""
         t.fail(measured(f"{what} returned NaN or infinite values for {lost.sum()} of the {len(got)} points, and "
                         f"each of those {lost.sum()} is in front of both cameras (a positive depth in each): NaN "
                         "is for a point behind a camera; " + (f"they are exactly the points where {shared}" if shared

@@ -156,6 +156,9 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
         return _single_unpacked(fn, line, given, found.group(1))
     if _INHOMOGENEOUS.search(message):
         return _mixed_items(fn, line)
+    found = _CONTAINER_ATTRIBUTE.search(message)
+    if found:
+        return _item_wrapped(fn, line, *found.groups())
     found = _UNBOUND.search(message)
     if found:
         return _local_read_first(fn, line, found.group(1) or found.group(2))
@@ -165,6 +168,9 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     found = _ALIAS_REMOVED.search(message)
     if found:
         return _removed_name(fn, line, found.group(1), found.group(2), release="1.24")
+    found = _NO_SUCH_NAME.search(message)
+    if found:
+        return _no_such_name(fn, line, *found.groups())
     found = _PAD_PAIRS.search(message)
     if found:
         return _pad_pairs(fn, line, *map(int, found.groups()))
@@ -295,6 +301,56 @@ def _singular_solved(fn, line: int) -> Form | None:
     return None
 
 
+_CONTAINER_ATTRIBUTE = re.compile(r"'(list|tuple)' object has no attribute '(\w+)'")
+ITEM_WRAPPED = "an item read through the list or tuple that holds it"
+# OpenCV's matchers that answer each query with a sequence of its k nearest matches
+_K_NEAREST = frozenset({"knnMatch", "radiusMatch"})
+
+
+def _item_wrapped(fn, line: int, kind: str, attribute: str) -> Form | None:
+    """``m.<attribute>`` on the raising line, where ``m`` is an item of a sequence whose items are themselves
+    lists or tuples: appended wrapped (``good.append([best])``, as OpenCV's drawMatchesKnn takes them), or
+    answered so by a matcher (``knnMatch`` gives each query a sequence of its k nearest matches)."""
+    read = {node.value.id for node in _own_nodes(fn) if isinstance(node, ast.Attribute) and node.attr == attribute
+            and isinstance(node.value, ast.Name) and node.lineno == line}
+    for loop in _own_nodes(fn):
+        if not isinstance(loop, (ast.For, ast.comprehension)) or not (loop.lineno if isinstance(loop, ast.For)
+                                                                       else loop.target.lineno) <= line:
+            continue
+        target = loop.target.elts[-1] if isinstance(loop.target, ast.Tuple) and isinstance(loop.iter, ast.Call) \
+            and _path(loop.iter.func) == "enumerate" and loop.target.elts else loop.target
+        if not (isinstance(target, ast.Name) and target.id in read):
+            continue
+        looped = loop.iter.args[0] if isinstance(loop.iter, ast.Call) and _path(loop.iter.func) == "enumerate" \
+            and loop.iter.args else loop.iter
+        said = _wrapped_items(fn, looped, line)
+        if said:
+            return Form(measured(f"`{target.id}.{attribute}` (line {line}) reads a {kind}: {said}, so "
+                                 f"`{target.id}` is that {kind}; read the item inside it (`{target.id}[0].{attribute}`), "
+                                 f"or keep the item itself"), ITEM_WRAPPED)
+    return None
+
+
+def _wrapped_items(fn, looped, line: int) -> str:
+    """Why the items of ``looped`` are lists or tuples, where the code says so; "" otherwise."""
+    calls = [looped] if isinstance(looped, ast.Call) else []
+    if isinstance(looped, ast.Name):
+        for node in _own_nodes(fn):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "append" \
+                    and isinstance(node.func.value, ast.Name) and node.func.value.id == looped.id \
+                    and len(node.args) == 1 and isinstance(node.args[0], (ast.List, ast.Tuple)) and node.lineno < line:
+                shown = ast.unparse(node)
+                return f"each item of `{looped.id}` is appended wrapped in one (`{shown}`, line {node.lineno})"
+            if isinstance(node, ast.Assign) and node.lineno < line and isinstance(node.value, ast.Call) \
+                    and any(isinstance(t, ast.Name) and t.id == looped.id for t in node.targets):
+                calls.append(node.value)
+    for call in calls:
+        if isinstance(call.func, ast.Attribute) and call.func.attr in _K_NEAREST:
+            return (f"`{call.func.attr}` (line {call.lineno}) answers each query with a sequence of its nearest "
+                    f"matches, and the loop takes those sequences")
+    return ""
+
+
 _INHOMOGENEOUS = re.compile(r"inhomogeneous shape|setting an array element with a sequence")
 MIXED_ITEMS = "a list of items of different forms made an array (None, or a number, beside pairs)"
 
@@ -354,20 +410,61 @@ def _local_read_first(fn, line: int, name: str) -> Form | None:
                          f"path before it is read (or give the module's one another name)"), UNBOUND)
 
 
-_REMOVED = re.compile(r"`np\.(\w+)` was removed in the NumPy 2\.0 release\.\s*\w+ `([^`]+)` instead")
+_REMOVED = re.compile(r"`np\.(\w+)` was removed in the NumPy 2\.0 release\.\s*([^.]*)")
 # (NumPy 1.24 removed the aliases of Python's own types: np.int, np.float, np.bool, np.object, np.str)
 _ALIAS_REMOVED = re.compile(r"`np\.(\w+)` was a deprecated alias for the builtin `(\w+)`")
+# a name NumPy does not have, told by Python alone (removed without a message of NumPy's, or misspelt)
+_NO_SUCH_NAME = re.compile(r"module 'numpy((?:\.\w+)*)' has no attribute '(\w+)'")
+_REMOVED_SILENTLY = {"product": "np.prod", "cumproduct": "np.cumprod", "msort": "np.sort(a, axis=0)",
+                     "asscalar": "a.item()", "alen": "len(a)"}
 REMOVED_NAME = "a name NumPy removed"
+NO_SUCH_NAME = "a name NumPy does not have"
 
 
 def _removed_name(fn, line: int, name: str, instead: str, release: str = "2.0") -> Form | None:
-    """``np.<name>`` on the raising line, which NumPy ``release`` removed (its message says what replaces it)."""
+    """``np.<name>`` on the raising line, which NumPy ``release`` removed (its message says what replaces it:
+    ``Use `np.asarray` with a proper dtype instead``, or the builtin's name)."""
+    written = re.fullmatch(r"[Uu]se (`[^`]+`) instead", instead.strip())
+    advice = f"write {written.group(1)}" if written else \
+        f"write `{instead}`" if re.fullmatch(r"\w+", instead) else instead.strip()[:1].lower() + instead.strip()[1:]
+    node = _numpy_name_on_line(fn, line, name)
+    if node is None:
+        return None
+    return Form(measured(f"your `{fn.name}` uses `{ast.unparse(node)}` (line {line}), a name NumPy {release} "
+                         f"removed (the grading's NumPy is {np.__version__}): {advice}"), REMOVED_NAME)
+
+
+def _numpy_name_on_line(fn, line: int, name: str, module: str = ""):
+    """The ``np<module>.<name>`` attribute written on ``line`` of ``fn``, or None."""
     for node in _own_nodes(fn):
-        if isinstance(node, ast.Attribute) and node.attr == name and _path(node.value) in ("np", "numpy") \
+        if isinstance(node, ast.Attribute) and node.attr == name \
+                and _path(node.value) in (f"np{module}", f"numpy{module}") \
                 and node.lineno <= line <= getattr(node, "end_lineno", node.lineno):
-            return Form(measured(f"your `{fn.name}` uses `{ast.unparse(node)}` (line {line}), a name NumPy {release} "
-                                 f"removed (the grading's NumPy is {np.__version__}): write `{instead}`"), REMOVED_NAME)
+            return node
     return None
+
+
+def _no_such_name(fn, line: int, module: str, name: str) -> Form | None:
+    """``np<module>.<name>`` on the raising line, a name the grading's NumPy does not have: one it removed
+    without a message of its own (`np.product`), or a misspelling of one it has (`np.linalg.svg`)."""
+    node = _numpy_name_on_line(fn, line, name, module)
+    if node is None:
+        return None
+    written = ast.unparse(node)
+    if name in _REMOVED_SILENTLY:
+        return Form(measured(f"your `{fn.name}` uses `{written}` (line {line}), a name NumPy 2 removed (the "
+                             f"grading's NumPy is {np.__version__}): write `{_REMOVED_SILENTLY[name]}`"), REMOVED_NAME)
+    import difflib
+    import functools
+
+    holder = functools.reduce(getattr, module.strip(".").split("."), np) if module else np
+    public = [n for n in dir(holder) if not n.startswith("_")]
+    close = difflib.get_close_matches(name, public, n=1, cutoff=0.75)
+    if not close:
+        return None
+    meant = f"{_path(node.value)}.{close[0]}"
+    return Form(measured(f"your `{fn.name}` uses `{written}` (line {line}), a name NumPy does not have "
+                         f"(the grading's NumPy is {np.__version__}): `{meant}` is the nearest it has"), NO_SUCH_NAME)
 
 
 _PAD_PAIRS = re.compile(r"remapped shapes \[original->remapped\]: \((\d+),\s*2\)\s+and requested shape \((\d+),\s*2\)")

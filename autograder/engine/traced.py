@@ -1173,7 +1173,8 @@ def named(verdict, trial, traceback_text: str = ""):
     code = code_of(trial)
     form = None
     if traceback_text and getattr(trial, "raised", None):
-        if (verdict.mistake and verdict.mistake not in EXCEPTION_FORMS) or _named_by_a_change(verdict):
+        if (verdict.mistake and verdict.mistake not in EXCEPTION_FORMS and not _a_case_removed(verdict)) \
+                or (_named_by_a_change(verdict) and not _a_case_removed(verdict)):
             return verdict   # (a form read from NumPy's message alone is told where it happened too)
         function, args, kwargs, message = trial.raised
         frames = without_comprehensions(frames_of(traceback_text))
@@ -1217,6 +1218,14 @@ def _named_by_a_change(verdict) -> bool:
 
     message = str(verdict.message)
     return str(verdict.mistake).startswith("mutant:") or naming.APPENDED in message or repair.HEAD in message
+
+
+def _a_case_removed(verdict) -> bool:
+    """Whether the change that names the failure takes out a case of the student's own whole (`removing
+    `if ...: ...``): it says where, not why -- what the raising line held is told beside it."""
+    from .mutants import repair
+
+    return repair.HEAD in str(verdict.message) and "removing `if " in str(verdict.message)
 
 
 def _call_answering(trial, function: str, shape: tuple | None):

@@ -264,6 +264,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _safely(_pose_never_chosen, name, function)
     found += _safely(_distortion_in_pixels, name, function)
     found += _safely(_loop_variable_rebinds, name, function)
+    found += _safely(_loop_variable_hides_a_value, name, function)
     found += _safely(_loop_variable_assigned_in_vain, name, function)
     found += _safely(_fisheye_model, name, function)
     found += _safely(_identity_with_a_literal, name, function)
@@ -1165,11 +1166,15 @@ def _opencv_parameters(function: str) -> tuple[tuple[str, ...], ...]:
     return tuple(signatures)
 
 
-def _number_of(constant: str) -> str:
+def _number_of(*constants: str) -> str:
+    """The number OpenCV's ``constants`` (dotted, joined by ``|``) stand for."""
     try:
         import cv2
 
-        return str(int(getattr(cv2, constant)))
+        number = 0
+        for constant in constants:
+            number |= int(getattr(cv2, constant.rpartition(".")[2]))
+        return str(number)
     except (ImportError, AttributeError, TypeError, ValueError):
         return "its number"
 
@@ -1185,8 +1190,9 @@ def _constant_out_of_place(name, function) -> list[Finding]:
         for position, argument in enumerate(node.args):
             if isinstance(argument, ast.Starred):   # (the places after it are not known)
                 break
-            path = _attribute_path(argument)
-            module, _, constant = path.rpartition(".")
+            flags = _joined_constants(argument)
+            path = ast.unparse(argument) if flags else ""
+            module, _, constant = (flags[0] if flags else "").rpartition(".")
             places = _family(constant) if module in OPENCV_MODULES else set()
             fitting = [names for names in signatures if len(names) > position]
             if not places or not fitting or any(names[position].lower() in places for names in fitting):
@@ -1198,9 +1204,19 @@ def _constant_out_of_place(name, function) -> list[Finding]:
             called = f"{module}.{node.func.attr}"
             return [Finding(name, _line(node), f"{path} is passed as {called}'s {given}",
                             f"{name} (line {_line(node)}) passes {path} as argument {position + 1} of {called}, "
-                            f"which is `{given}` there, so {given} gets {_number_of(constant)}; {path} belongs to "
+                            f"which is `{given}` there, so {given} gets {_number_of(*flags)}; {path} belongs to "
                             f"`{meant}`: pass it by name ({meant}={path})", certain=True)]
     return []
+
+
+def _joined_constants(node) -> list[str]:
+    """The dotted constants of an OpenCV flag, alone or joined by ``|`` or ``+``
+    (``cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP``); [] for any other expression."""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.BitOr, ast.Add)):
+        left, right = _joined_constants(node.left), _joined_constants(node.right)
+        return left + right if left and right else []
+    path = _attribute_path(node)
+    return [path] if path.rpartition(".")[0] in OPENCV_MODULES else []
 
 
 # ------------------------------------------------------------------ the last turn's value after a loop
@@ -2585,6 +2601,57 @@ def _loop_variable_rebinds(name, function) -> list[Finding]:
                                 f"loop, where it holds the loop's last item, not what it held before: give the loop "
                                 f"variable a name of its own")]
     return []
+
+
+def _loop_variable_hides_a_value(name, function) -> list[Finding]:
+    """``r, c = out.shape[:2]`` then ``for a, b, c in lines:`` reading ``c`` in the loop as the width: the loop
+    takes as its variable a name assigned above it whose value nothing read yet, so every read of it in the
+    loop gets the loop's items and the value assigned is never read (one name for two values). A constant
+    assigned first (``i = 0``) is an initialisation, not a value meant. (Each name's places are gathered once and
+    searched by bisection: linear in the function's size.)"""
+    places: dict[str, list] = {}   # name -> sorted [(line, column, read)]
+    for node in _nodes(function):
+        if isinstance(node, ast.Name):
+            places.setdefault(node.id, []).append((node.lineno, node.col_offset, isinstance(node.ctx, ast.Load)))
+    for found in places.values():
+        found.sort()
+    assigned = {(target.id, statement.lineno): statement for statement in _nodes(function)
+                if isinstance(statement, ast.Assign)
+                for target in ast.walk(ast.Tuple(elts=statement.targets)) if isinstance(target, ast.Name)}
+    for loop in _nodes(function):
+        if not isinstance(loop, ast.For):
+            continue
+        iterated = {n.id for n in ast.walk(loop.iter) if isinstance(n, ast.Name)}
+        for target in (t for t in ast.walk(loop.target) if isinstance(t, ast.Name) and t.id not in iterated):
+            found = places[target.id]
+            at = bisect.bisect_left(found, (loop.lineno, -1, False))
+            if at == 0 or found[at - 1][2]:
+                continue   # (not assigned above the loop, or read since)
+            statement = assigned.get((target.id, found[at - 1][0]))
+            if statement is None or isinstance(statement.value, ast.Constant):
+                continue
+            end = bisect.bisect_left(found, (loop.end_lineno + 1, -1, False))
+            inside = [place for place in found[at:end] if place[2] and place[0] > loop.target.end_lineno]
+            if not inside or (end < len(found) and found[end][2]):
+                continue   # (not read in the loop; or read after it: _loop_variable_rebinds tells that)
+            line, read = _line(statement), inside[0][0]
+            return [Finding(name, line, "a value assigned above a loop whose variable takes its name",
+                            f"{name} (line {line}) assigns `{target.id}` (`{_shortened(statement)}`) and, before "
+                            f"anything reads it, the loop of line {_line(loop)} (`for {_target_text(loop.target)} in "
+                            f"...`) takes `{target.id}` as its own variable: the reads of `{target.id}` in the loop "
+                            f"(line {read}) get the loop's items, and line {line}'s value is never read -- one name "
+                            f"for two values: give one of them another name")]
+    return []
+
+
+def _target_text(target) -> str:
+    """A loop's target as written (`i, (a, b, c)`, without the brackets ast.unparse puts around a tuple)."""
+    return ", ".join(ast.unparse(e) for e in target.elts) if isinstance(target, ast.Tuple) else ast.unparse(target)
+
+
+def _shortened(node, limit: int = 60) -> str:
+    text = " ".join(ast.unparse(node).split())
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 # ------------------------------------------------------------------ a homogeneous system solved by least squares

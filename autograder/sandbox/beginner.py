@@ -127,6 +127,15 @@ def _bad_argument(function, message, arguments, values) -> str:
         name = found.group(1)
         return (f"{function} needs a whole number for {name}; yours is {_shown(values.get(name, '?'))}: "
                 f"use int(round({name}))")
+    found = re.search(r"Argument '(\w+)' can not be treated as a double", message)
+    if found:
+        # (cv2.addWeighted's alpha given a mask: one number weighs the whole image alike)
+        name = found.group(1)
+        value = values.get(name, "?")
+        per_pixel = _is_array(value) and value.size > 1
+        return (f"{function} needs one number for {name}; yours is {_shown(value)}"
+                + (f": {function} applies {name} to every pixel alike, so a weight that changes from pixel to "
+                   "pixel is applied with NumPy (multiply the arrays by it)" if per_pixel else ""))
     found = re.search(r"Can't parse '(\w+)'\. (.*)", message)
     if found:
         name, why = found.group(1), found.group(2)

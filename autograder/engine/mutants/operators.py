@@ -837,6 +837,14 @@ _IMAGE_FILTERS = frozenset({"blur", "boxFilter", "sqrBoxFilter", "GaussianBlur",
                             "bilateralFilter"})
 
 
+def _constant_index(index) -> int | None:
+    """The whole number an index is written as (`2`, `-1`), or None."""
+    if isinstance(index, ast.UnaryOp) and isinstance(index.op, ast.USub) and isinstance(index.operand, ast.Constant) \
+            and type(index.operand.value) is int:
+        return -index.operand.value
+    return index.value if isinstance(index, ast.Constant) and type(index.value) is int else None
+
+
 def _filters_a_made_stack(node, parents) -> bool:
     """An OpenCV filter, or a helper of the module, called on a name the def binds to a stack of images
     (`np.zeros((D, h, w))`, `np.stack(...)`): the whole stack given where each image belongs."""
@@ -4061,6 +4069,13 @@ def _numpy_slips(node, parent, parents):
         k = node.slice.elts[-1].value
         kept = [ast.unparse(e) for e in node.slice.elts[:-1]] + [f"{k}:{k + 1}" if k != -1 else "-1:"]
         yield "keep_axis", f"{_operand(node.value)}[{', '.join(kept)}]", ""
+    row = _constant_index(node.slice) if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) \
+        and isinstance(node.value, ast.Name) else None
+    if row is not None and isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)) \
+            and any(isinstance(side, ast.Name) and side.id == node.value.id for side in (parent.left, parent.right)):
+        # one ROW of an array of points-as-rows in arithmetic with the array itself (`x / x[-1]`, the
+        # column-vector habit): its column, kept 2-D, belongs (`x[:, -1:]`, each point's own w)
+        yield "keep_axis", f"{node.value.id}[:, {f'{row}:{row + 1}' if row != -1 else '-1:'}]", ""
     if isinstance(node, ast.Call) and isinstance(parent, ast.BinOp) \
             and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult, ast.Div)) \
             and _dotted(node.func).rsplit(".", 1)[-1] in _PER_ROW_REDUCTIONS \
@@ -7315,7 +7330,7 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     related = words.related(line) if words.student else frozenset()
     others.sort(key=lambda pair: (pair[0] not in unread, pair[0].lower() != node.id.lower(), pair[0] not in together,
                                   not twin_names(node.id, pair[0]),
-                                  not _derived_names(node.id, pair[0]),
+                                  not _derived_names(node.id, pair[0]) and not _one_stem(node.id, pair[0]),
                                   not (pair[0] in related and (pair[0] in params) == kind),
                                   pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
     count = 0
@@ -7343,6 +7358,14 @@ def _derived_names(a: str, b: str) -> bool:
     short, long = sorted((a, b), key=len)
     return short != long and (long.startswith(short) and (long[len(short)] == "_" or len(long) - len(short) <= 2)
                               or long.endswith("_" + short))
+
+
+def _one_stem(a: str, b: str) -> bool:
+    """Whether two names are one word's two variants (`z_mean` / `z_avg`, `pts_norm` / `pts_raw`): the same
+    stem before their first underscore, told apart after it."""
+    stem_a, _, rest_a = a.partition("_")
+    stem_b, _, rest_b = b.partition("_")
+    return bool(stem_a) and stem_a == stem_b and bool(rest_a) and bool(rest_b) and a != b
 
 
 def _line_name_changes(node: ast.Assign, words: _Words, line):

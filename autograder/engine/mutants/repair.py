@@ -839,8 +839,10 @@ class _Student:
     def renormalises(self, mutant) -> bool:
         """Whether the mutant changes which of an array's own entries divides it (``F / F[2, 2]``: the
         index, or the entry, of the divisor ``F[...]`` of a division of ``F``), in any of its edits (a
-        pair: both indices of `P[2, 3]` made 0)."""
-        return any(self._renormalises(where, ordinal) for where, ordinal, _, _ in mutant.edits)
+        pair: both indices of `P[2, 3]` made 0). A divisor made a column (`x / x[-1]` -> `x / x[:, -1:]`, each
+        row divided by its own entry) changes more than the scale: not this."""
+        return any(self._renormalises(where, ordinal) for where, ordinal, operator, _ in mutant.edits
+                   if operator != "keep_axis")
 
     def _renormalises(self, where: str, ordinal: int) -> bool:
         nodes, parents = self._walk(where)
