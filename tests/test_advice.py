@@ -197,6 +197,9 @@ def test_what_a_change_in_place_did_is_told_from_the_values():
     assert how_changed(points, points / 4) == "divides (by 4)"
     assert how_changed(points, points * 3) == "multiplies (by 3)"
     assert how_changed(points, points - points.mean(axis=0)).startswith("shifts")
+    # (the offset as the call added it, sign included: `p2[:, 0] += w1` adds, it does not subtract)
+    assert how_changed(points, points + [400.0, 0.0]) == "shifts (adds [400, 0] to every row of)"
+    assert how_changed(points[:, 0], points[:, 0] - 3) == "shifts (adds -3 to every entry of)"
     assert how_changed(points, np.zeros((2, 2))) == "writes into"
     assert argument_name("normalise_points(points, scale=1.0)", 0, None) == "points"
     assert argument_name("calibrate(images, pattern_size, square_size)", 0, 2) == "images[2]"

@@ -84,6 +84,9 @@ CASES = [
                           np.eye(2)), {}, ["cameraMatrix of shape (3, 3)", "(2, 2)"]),
     ("copyMakeBorder", (GREY, -1, 2, 2, 2, cv2.BORDER_CONSTANT), {}, ["borders of 0 pixels or more", "top=-1"]),
     ("boxFilter", (GREY, -1, (0, 5)), {}, ["kernel size of at least 1", "(0, 5)"]),
+    # a weight per pixel given where one number weighs the whole image (a mask level as addWeighted's alpha)
+    ("addWeighted", (IMAGE.astype(np.float32), np.full((40, 60, 1), 0.5, np.float32), IMAGE.astype(np.float32), 0.5,
+                     0), {}, ["needs one number for alpha", "(40, 60, 1)", "multiply the arrays by it"]),
 ]
 
 

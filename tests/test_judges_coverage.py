@@ -57,6 +57,8 @@ EXCEPTION_EXPLAINED = (   # autograder/sandbox/beginner.py: the value of the cal
     "{} needs {} as a float32 or float64 matrix; yours is {}: build it with dtype=float (np.array([[1, 0, tx], "
     "...], dtype=float)) or convert it with {}.astype(np.float64)",
     ": pass its first two rows, {}[:2]",
+    ": {} applies {} to every pixel alike, so a weight that changes from pixel to pixel is applied with NumPy "
+    "(multiply the arrays by it)",
     ": add the row [0, 0, 1], or warp with cv2.warpAffine",
     "{} needs {} as exactly {} points of {} float32 coordinates, shape ({}, {}); yours is {}: np.float32({})",
     "{} needs points of shape (N, 1, 2) and a 3x3 matrix; yours are {}: pass points.reshape(-1, 1, 2)",

@@ -679,3 +679,64 @@ def test_a_math_domain_error_beside_a_power_is_not_told():
         def f(a, b):
             return math.log(a) + math.pow(b, 0.5)
         """, 4, (np.float64(1.0), np.float64(-2.0))) is None
+
+
+def test_a_removed_name_whose_message_advises_in_words_is_told_with_that_advice():
+    """`np.asfarray(src)` (the blind set 1206c's 07/04): NumPy's message says "Use `np.asarray` with a proper
+    dtype instead" -- a sentence, not a name alone: told as it says."""
+    source = """
+        import numpy as np
+
+        def f(src):
+            return np.asfarray(src) * 2
+        """
+    message = "`np.asfarray` was removed in the NumPy 2.0 release. Use `np.asarray` with a proper dtype instead."
+    form = _raised_at(source, 5, message)
+    assert form is not None and "uses `np.asfarray` (line 5)" in form.sentence \
+        and "use `np.asarray` with a proper dtype" in form.sentence, form
+
+
+@pytest.mark.parametrize("written, said", [("np.product(a)", "write `np.prod`"),
+                                            ("np.linalg.svg(a)", "`np.linalg.svd` is the nearest it has")])
+def test_a_name_numpy_does_not_have_is_told_removed_or_misspelt(written, said):
+    """Python's own "module 'numpy' has no attribute ..." for a name NumPy 2 removed without a message of its
+    own (`np.product`) or a misspelling of one it has (`np.linalg.svg`); a name nothing near is not told."""
+    source = f"""
+        import numpy as np
+
+        def f(a):
+            return {written}
+        """
+    module, name = written.split("(")[0].rsplit(".", 1)
+    message = f"module '{module.replace('np', 'numpy', 1)}' has no attribute '{name}'"
+    form = _raised_at(source, 5, message)
+    assert form is not None and said in form.sentence, form
+    assert _raised_at(source.replace(written, "np.zzqqxx(a)"), 5, "module 'numpy' has no attribute 'zzqqxx'") is None
+
+
+def test_an_attribute_read_through_the_list_holding_the_item_is_told_where_it_was_wrapped():
+    """`good.append([m])` then `k[m.queryIdx]` in a loop over `good` (the blind set 1206c's 08/04), and a loop over
+    knnMatch's answer read as matches: each item is a list or tuple, told with where it became one; a loop over
+    something else is not told."""
+    source = """
+        import numpy as np
+
+        def f(matcher, d1, d2, kp):
+            good = []
+            for m, n in matcher.knnMatch(d1, d2, k=2):
+                good.append([m])
+            return [kp[g.queryIdx].pt for g in good]
+        """
+    form = _raised_at(source, 8, "'list' object has no attribute 'queryIdx'", args=(None,) * 4)
+    assert form is not None and "`good.append([m])`, line 7" in form.sentence and "`g[0].queryIdx`" in form.sentence
+    pairs = """
+        import numpy as np
+
+        def f(matcher, d1, d2):
+            matches = matcher.knnMatch(d1, d2, k=2)
+            return [m.distance for m in matches]
+        """
+    form = _raised_at(pairs, 6, "'tuple' object has no attribute 'distance'", args=(None,) * 3)
+    assert form is not None and "`knnMatch` (line 5) answers each query with a sequence" in form.sentence
+    other = pairs.replace("matcher.knnMatch(d1, d2, k=2)", "list(d1)")
+    assert _raised_at(other, 6, "'tuple' object has no attribute 'distance'", args=(None,) * 3) is None

@@ -5439,3 +5439,62 @@ def test_a_negated_all_where_any_belongs_is_a_change_tried():
     assert ("~np.all(bits, axis=0)", "np.any(bits, axis=0)") in changes, changes
     assert ("empty = not x.any()", "empty = x.all()") in changes, changes
     assert not any(before == "np.all(bits)" for before, _ in changes), changes
+
+
+def test_a_row_dividing_an_array_of_rows_is_offered_each_rows_own_column():
+    """`x / x[-1]` on points in rows (the column-vector habit: the last point's row divides every point) is
+    offered `x[:, -1:]`, each point's own w kept as a column; and that change is no renormalisation of `x` by
+    another of its own entries (a divisor made a column changes more than the scale)."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(P, X):
+            x = np.hstack([X, np.ones((len(X), 1))]) @ P.T
+            x = x / x[-1]
+            return x[:, :2]
+    """)
+    changes = [m for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"] if m.operator == "keep_axis"]
+    assert [m.edits[0][3] for m in changes] == ["x[:, -1:]"]
+    from autograder.loading.parsing import parse
+    student = repair._Student(source, parse(source), ["graded(P, X)"])
+    assert not student.renormalises(changes[0])
+
+
+def test_a_names_other_variant_of_one_stem_is_tried_among_the_first():
+    """`z_mean` where `z_avg` belongs (two variants of one word, `z`): among the few names tried at the place,
+    however many other locals there are."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(points, f, z_avg=None):
+            pts = np.atleast_2d(np.asarray(points, dtype=np.float64))
+            X, Y, Z = pts[:, 0], pts[:, 1], pts[:, 2]
+            z_mean = Z.mean()
+            if z_avg is None:
+                z_avg = z_mean
+            x = f * X / z_avg
+            y = f * Y / z_mean
+            return np.column_stack([x, y])
+    """)
+    offered = {m.edits[0][3] for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+               if m.operator == "other_name" and m.line == 11}
+    assert "z_avg" in offered
+
+
+def test_a_calls_two_arguments_alike_but_for_a_size_twin_are_twins():
+    """`np.meshgrid(np.arange(h), np.arange(w))` exchanged is a twin exchange (a grid made rows first), tried
+    first where the answer's rows and columns are exchanged; two unlike arguments are not."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(image, k):
+            h, w = image.shape[:2]
+            u, v = np.meshgrid(np.arange(h), np.arange(w))
+            return np.maximum(image, k) + u + v
+    """)
+    from autograder.loading.parsing import parse
+    student = repair._Student(source, parse(source), ["graded(image, k)"])
+    swaps = [m for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"] if m.operator == "swap_args"]
+    told = {str(student.fix(m).changes): student.twin_items(m) for m in swaps if student.fix(m) is not None}
+    assert any(twin for text, twin in told.items() if "meshgrid" in text)
+    assert not any(twin for text, twin in told.items() if "maximum" in text)

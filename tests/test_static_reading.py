@@ -1821,3 +1821,45 @@ def test_a_comparison_of_a_whole_value_and_a_list_grown_through_another_name_are
         """)
     assert "a comparison written where an assignment belongs" not in found
     assert "an alias of an array is changed in place" not in found
+
+
+def test_a_value_whose_name_a_loop_takes_before_it_is_read_is_read():
+    """`r, c = out.shape[:2]` then `for a, b, c in lines:` reading `c` as the width (the blind set 1206c's 11/02):
+    the loop's items are what the loop reads, the width is never read. A constant set first (`i = 0`), a value
+    read before the loop, or a loop that does not read the name is not read as one."""
+    source = """
+        def f(out, lines):
+            r, c = out.shape[:2]
+            for a, b, c in lines:
+                out[0, int(c) - 1] = a + b
+            return out, r
+        """
+    assert "a value assigned above a loop whose variable takes its name" in one(source)
+    assert "a value assigned above a loop whose variable takes its name" not in one(
+        source.replace("r, c = out.shape[:2]", "r, c = out.shape[:2]\n            print(c)"))
+    assert "a value assigned above a loop whose variable takes its name" not in one("""
+        def f(items):
+            i = 0
+            for i, item in enumerate(items):
+                item.append(i)
+            return items
+        """)
+    assert "a value assigned above a loop whose variable takes its name" not in one("""
+        def f(out, lines):
+            r, c = out.shape[:2]
+            for a, b, c in lines:
+                out[0, 0] = a + b
+            return out, r
+        """)
+
+
+def test_opencv_flags_joined_with_or_passed_into_another_parameter_are_read():
+    """`cv2.warpAffine(image, M, size, cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)` (the blind set 1206c's 07/02): the
+    fourth place is `dst`, which gets the flags' number; by name (`flags=...`) it is not read."""
+    source = """
+        def f(image, M, size):
+            return cv2.warpAffine(image, M, size, cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
+        """
+    found = one(source)
+    assert "cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP is passed as cv2.warpAffine's dst" in found
+    assert not any("is passed as" in mistake for mistake in one(source.replace("size, cv2.INTER", "size, flags=cv2.INTER")))

@@ -117,7 +117,9 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
     if len(got) == 2 and len(expected) == 2 and None not in expected:
         rows, columns = expected
         if rows != columns and got == (columns, rows):
-            return Form("it looks transposed (rows and columns exchanged)", "the result is transposed")
+            # (the lengths alone: an array transposed, or one made with its two sizes in the other order)
+            return Form("its rows and columns are exchanged (transposed, or made with its two sizes in the other "
+                        "order)", "the result is transposed")
         if got == (rows - 1, columns) and rows == columns in (3, 4):
             return Form(f"it looks like the {_size(got)} affine form, the matrix without its last row "
                         f"[0 ... 0 1]; a {_size(expected)} homogeneous matrix is asked",

@@ -293,10 +293,17 @@ def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3)
         A second input whose answer confirms a mistake that ``mistakes`` names
         (its truth required; :func:`call_probe` builds one). Without it no mistake is named.
     """
+    listed = type(got).__name__ if isinstance(got, (list, tuple)) else ""
     got = t.expect_array(got, what, shape=shape, kind="iuf", finite=True)
     scale = 1.0 if up_to_scale else max(1.0, float(np.abs(expected).max()))
     distance = projective_distance if up_to_scale else max_abs_error
     tolerance = at_precision(rtol * scale, scale)
+    if distance(got, expected) <= tolerance and listed:
+        # (right numbers in a Python list: the API's matrices are arrays, and a caller's `M.shape`, `M[:2, 2]`
+        # or `M @ x` fails on a list)
+        t.fail(measured(f"{what} returned a Python {listed} of rows, not a NumPy array: matrices are float arrays "
+                        f"(np.array(...)); a caller's `M.shape`, `M[:2, 2]` or `M @ x` fails on a {listed}"),
+               mistake="a matrix returned as a Python list")
     if distance(got, expected) <= tolerance:
         if got.dtype.kind in "iu":   # (right here, as whole-number arguments give: any fraction is cut off)
             t.fail(f"{what} returned an integer matrix (dtype {got.dtype}): matrices are float arrays, and "

@@ -410,7 +410,7 @@ def _local_read_first(fn, line: int, name: str) -> Form | None:
                          f"path before it is read (or give the module's one another name)"), UNBOUND)
 
 
-_REMOVED = re.compile(r"`np\.(\w+)` was removed in the NumPy 2\.0 release\.\s*([^.]*)")
+_REMOVED = re.compile(r"`np\.(\w+)` was removed in the NumPy 2\.0 release\.\s*(.+?)\.?(?:\s*$|\.\s)", re.M)
 # (NumPy 1.24 removed the aliases of Python's own types: np.int, np.float, np.bool, np.object, np.str)
 _ALIAS_REMOVED = re.compile(r"`np\.(\w+)` was a deprecated alias for the builtin `(\w+)`")
 # a name NumPy does not have, told by Python alone (removed without a message of NumPy's, or misspelt)
@@ -425,13 +425,14 @@ def _removed_name(fn, line: int, name: str, instead: str, release: str = "2.0") 
     """``np.<name>`` on the raising line, which NumPy ``release`` removed (its message says what replaces it:
     ``Use `np.asarray` with a proper dtype instead``, or the builtin's name)."""
     written = re.fullmatch(r"[Uu]se (`[^`]+`) instead", instead.strip())
-    advice = f"write {written.group(1)}" if written else \
-        f"write `{instead}`" if re.fullmatch(r"\w+", instead) else instead.strip()[:1].lower() + instead.strip()[1:]
+    replacement = written.group(1) if written else f"`{instead}`" if re.fullmatch(r"\w+", instead) else ""
     node = _numpy_name_on_line(fn, line, name)
     if node is None:
         return None
     return Form(measured(f"your `{fn.name}` uses `{ast.unparse(node)}` (line {line}), a name NumPy {release} "
-                         f"removed (the grading's NumPy is {np.__version__}): {advice}"), REMOVED_NAME)
+                         f"removed (the grading's NumPy is {np.__version__}): "
+                         + (f"write {replacement}" if replacement else instead.strip()[:1].lower() + instead.strip()[1:])),
+                REMOVED_NAME)
 
 
 def _numpy_name_on_line(fn, line: int, name: str, module: str = ""):
@@ -459,7 +460,7 @@ def _no_such_name(fn, line: int, module: str, name: str) -> Form | None:
 
     holder = functools.reduce(getattr, module.strip(".").split("."), np) if module else np
     public = [n for n in dir(holder) if not n.startswith("_")]
-    close = difflib.get_close_matches(name, public, n=1, cutoff=0.75)
+    close = difflib.get_close_matches(name, public, n=1, cutoff=0.6)
     if not close:
         return None
     meant = f"{_path(node.value)}.{close[0]}"

@@ -290,6 +290,7 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     """
     got = expect_disparity(t, what, got, scene)
     judged = scene.judged if judged is None else judged
+    fail_if_an_edge_row_left_out(t, what, got, scene.disparity)
     bad = truth.bad_pixel_rate(got, judged, scene.threshold)
     if show:
         show_disparity(t, f"{what} on {scene.name}", scene, got, bad, judged)
@@ -1803,6 +1804,31 @@ def _left_image_rolled_back(function) -> str:
     return ""
 
 
+EDGE_ROW_LEFT_OUT = "the first or last row of the map never computed"
+
+
+def fail_if_an_edge_row_left_out(t: Trial, what: str, got, true_disparity):
+    """Fail when the map's first or last row has no disparity at all while the row beside it and the opposite
+    edge row have one at most pixels, and the truth at most of it: a loop over the rows one short
+    (`range(height - 1)`). A border a block leaves invalid is left alike at the top and the bottom (StereoBM
+    leaves block_size // 2 rows at each), and is not this."""
+    got = np.asarray(got, np.float64)
+    if got.ndim != 2 or got.shape[0] < 3:
+        return
+    with np.errstate(invalid="ignore"):
+        computed = (np.isfinite(got) & (got > 0)).mean(axis=1)
+        known = (np.isfinite(true_disparity) & (np.asarray(true_disparity, np.float64) > 0)).mean(axis=1)
+    last = got.shape[0] - 1
+    for edge, beside, opposite, which in ((last, last - 1, 0, "last"), (0, 1, last, "first")):
+        if computed[edge] == 0 and computed[beside] >= 0.5 and computed[opposite] >= 0.5 and known[edge] >= 0.5:
+            t.fail(measured(f"{what}: row {edge}, the {which} row of the map, has no disparity at all (every pixel "
+                            f"invalid), where the row beside it has one at {computed[beside]:.0%} of its pixels, the "
+                            f"{'first' if which == 'last' else 'last'} row at {computed[opposite]:.0%}, and the truth "
+                            f"at {known[edge]:.0%} of this row: the {which} row is never computed (a loop over the "
+                            f"rows that {'stops one short' if which == 'last' else 'starts one late'}?)"),
+                   mistake=EDGE_ROW_LEFT_OUT)
+
+
 def judge_left_strip(t: Trial, what: str, got, max_disparity: int, function: str = "block_matching"):
     """Fail when more than :data:`LEFT_STRIP_ALLOWED` of the left strip ``x < max_disparity`` of the
     map ``got`` (H, W) get a disparity above their column ``x`` (+ :data:`PAST_THE_EDGE`): a match
@@ -2630,6 +2656,7 @@ def dp_weak_texture(t):
     bad = truth.bad_pixel_rate(got, scene.judged, scene.threshold)
     show_disparity(t, f"{what} on {scene.name}", scene, got, bad)
     judge_last_column(t, what, got, scene)
+    fail_if_an_edge_row_left_out(t, what, got, scene.disparity)
     reference, bm = figures("weak_texture", "dp_5"), figures("weak_texture", "bm_ssd_5")
     summary = (f"bad-pixel rate {bad:.1%} (reference {reference['bad']:.1%}; block matching "
                f"with the same block size {bm['bad']:.1%})")

@@ -2640,7 +2640,7 @@ def _loop_variable_hides_a_value(name, function) -> list[Finding]:
                             f"anything reads it, the loop of line {_line(loop)} (`for {_target_text(loop.target)} in "
                             f"...`) takes `{target.id}` as its own variable: the reads of `{target.id}` in the loop "
                             f"(line {read}) get the loop's items, and line {line}'s value is never read -- one name "
-                            f"for two values: give one of them another name")]
+                            f"for two values: give one of them another name", certain=True)]
     return []
 
 

@@ -1159,16 +1159,19 @@ class _Student:
         return any(isinstance(item, ast.Name) and item.id == payload for item in items if item is not node)
 
     def twin_items(self, mutant) -> bool:
-        """Whether the mutant exchanges two items that are each other's twins (`(int(y_max - y_min) + 1,
-        int(x_max - x_min) + 1)`: the same code with x for y, a size given rows first)."""
+        """Whether the mutant exchanges two items (or a call's two arguments) that are each other's twins
+        (`(int(y_max - y_min) + 1, int(x_max - x_min) + 1)`: the same code with x for y, a size given rows first)."""
         where, ordinal, operator, payload = mutant.edits[0]
-        if operator != "swap_items" or len(mutant.edits) != 1 or payload[0] == "moved":
+        if operator not in ("swap_items", "swap_args") or len(mutant.edits) != 1 or payload[0] == "moved":
             return False
         nodes, _ = self._walk(where)
         node = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
-        if not isinstance(node, (ast.Tuple, ast.List)) or max(payload) >= len(node.elts):
+        # (a call's two arguments alike: `np.meshgrid(np.arange(h), np.arange(w))`, a grid made rows first)
+        items = node.args if operator == "swap_args" and isinstance(node, ast.Call) else \
+            node.elts if operator == "swap_items" and isinstance(node, (ast.Tuple, ast.List)) else None
+        if items is None or max(payload) >= len(items):
             return False
-        first, second = (re.findall(r"\w+", ast.unparse(node.elts[k])) for k in payload)
+        first, second = (re.findall(r"\w+", ast.unparse(items[k])) for k in payload)
         pairs = [(a, b) for a, b in zip(first, second) if a != b]
         return len(first) == len(second) and bool(pairs) and all(twin_names(a, b) for a, b in pairs)
 
@@ -2883,7 +2886,10 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         # An answer with rows and columns exchanged (a canvas sized (height, width)): the exchanges
         # of twins first, wherever they are (`(y_max - y_min, x_max - x_min)`, `w, h = shape[:2]`).
         twins = [m for m in runnable if _twin_swap(student.fix(m)) or student.twin_items(m)]
-        runnable = twins + [m for m in runnable if m not in twins]
+        # (of those, the twins that are sizes first: only they change a shape -- `x`/`y`, `fx`/`fy` of a lens
+        # model are many, and each is a variant run)
+        sized = [m for m in twins if _SIZE_TWINS.search(str(student.fix(m).changes))]
+        runnable = sized + [m for m in twins if m not in sized] + [m for m in runnable if m not in twins]
     # (time kept for confirming a change found: a slow function's -- features matched on photographs --
     # confirmation calls take as long as its own calls, a few of them)
     reserve = min(max(RESERVE, CONFIRMATION_CALLS * variant.seconds_per_call / clock.pace), clock.left() / 2)
@@ -3508,6 +3514,7 @@ def _ties_only(fix: "Fix") -> bool:
     return before != after and loose(before) == loose(after)
 
 
+_SIZE_TWINS = re.compile(r"\b(?:h|w|H|W|height|width|rows|cols|n_rows|n_cols|shape)\b")
 _SIZE_CODE = re.compile(r"\.shape\b|\bresize\b|\breshape\b|\bpad\b|\bpyr(?:Down|Up)\b|\bdsize\b|\blen\(|\[[^\]]*:")
 
 

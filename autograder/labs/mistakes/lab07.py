@@ -849,4 +849,32 @@ MISTAKES = {
             size = image.shape[-2::-1] if dsize is None else dsize
             return cv2.warpAffine(image, np.asarray(A, np.float64), tuple(int(n) for n in size))
         """, ["warp_affine(grey image, A)", "dsize as 2 numbers"]),
+
+    # (blind set 2026-12-06c)
+    "warpAffine's flags joined with | passed positionally, into its dst": ("lab07.ex3", """
+        def scale(image, sx=1.5, sy=1.5):
+            height, width = image.shape[:2]
+            inverse = np.array([[1.0 / sx, 0.0, 0.0], [0.0, 1.0 / sy, 0.0]])
+            return cv2.warpAffine(image, inverse, (width, height), cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
+        """, ["as argument 4 of cv2.warpaffine, which is `dst` there", "flags=cv2.inter_linear | cv2.warp_inverse_map"]),
+    "shear_matrix returned as nested Python lists": ("lab07.ex4", """
+        def shear_matrix(s):
+            return [[1.0, s, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+        """, ["returned a python list of rows, not a numpy array"]),
+    "affine_from_points converting with np.asfarray (removed in NumPy 2.0)": ("lab07.ex5", reference_def_with(
+        "lab07_transformations", "affine_from_points", "src = np.asarray(src, dtype=np.float64)",
+        "src = np.asfarray(src)"), ["uses `np.asfarray` (line", "a name numpy 2.0 removed"]),
+    "a whole-pixel shift copying its window without testing it is empty (tx past the width)": ("lab07.ex1", """
+        def translate(image, tx=100, ty=50):
+            height, width = image.shape[:2]
+            if float(tx).is_integer() and float(ty).is_integer():
+                dx, dy = int(tx), int(ty)
+                out = np.zeros_like(image)
+                x0, x1 = max(dx, 0), min(width + dx, width)
+                y0, y1 = max(dy, 0), min(height + dy, height)
+                out[y0:y1, x0:x1] = image[y0 - dy:y1 - dy, x0 - dx:x1 - dx]
+                return out
+            M = np.array([[1.0, 0.0, tx], [0.0, 1.0, ty]])
+            return cv2.warpAffine(image, M, (width, height))
+        """, ["a negative slice bound counts from the end of the axis"]),
 }

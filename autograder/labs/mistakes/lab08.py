@@ -1315,6 +1315,30 @@ MISTAKES = {
                 bands.append(level - blurred)
             return bands + [gaussian[-1]]
         """, ["`level - blurred`, a level less its own blur"]),
+
+    # (blind set 2026-12-06c)
+    "matches kept wrapped in one-item lists (drawMatchesKnn's form), then read as matches": ("lab08.ex3", """
+        def match_features(img1, img2, ratio=0.75, method="sift"):
+            detector, norm = (cv2.SIFT_create(), cv2.NORM_L2) if method == "sift" else \\
+                (cv2.ORB_create(nfeatures=1000), cv2.NORM_HAMMING)
+            grey1 = img1 if img1.ndim == 2 else cv2.cvtColor(img1, cv2.COLOR_BGR2GRAY)
+            grey2 = img2 if img2.ndim == 2 else cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY)
+            kp1, des1 = detector.detectAndCompute(grey1, None)
+            kp2, des2 = detector.detectAndCompute(grey2, None)
+            if des1 is None or des2 is None or len(kp2) < 2:
+                return np.zeros((0, 2)), np.zeros((0, 2))
+            good = []
+            for pair in cv2.BFMatcher(norm).knnMatch(des1, des2, k=2):
+                if len(pair) == 2 and pair[0].distance < ratio * pair[1].distance:
+                    good.append([pair[0]])
+            pts1 = np.array([kp1[m.queryIdx].pt for m in good], dtype=np.float64).reshape(-1, 2)
+            pts2 = np.array([kp2[m.trainIdx].pt for m in good], dtype=np.float64).reshape(-1, 2)
+            return pts1, pts2
+        """, ["is appended wrapped in one (`good.append([pair[0]])`", "`m[0].queryidx`"]),
+    "pyramid bands blended by cv2.addWeighted with the mask level as its alpha": ("lab08.ext3", reference_def_with(
+        "lab08_homographies", "blend_multiband", "bands.append(w * band_a + (1 - w) * band_b)",
+        "bands.append(cv2.addWeighted(band_a, w, band_b, 1 - w, 0))"),
+        ["cv2.addweighted needs one number for alpha", "multiply the arrays by it"]),
 }
 
 

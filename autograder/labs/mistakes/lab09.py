@@ -1029,6 +1029,22 @@ MISTAKES = {
     "calibrate returning the square root of the RMS": ("lab09.ext1", reference_def_with(
         "lab09_camera", "calibrate", "return K, dist.ravel()[:5], float(rms)", "return K, dist.ravel()[:5], float(np.sqrt(rms))"),
         ["above what cv2.calibrateCamera's RMS", "Your code takes a square root (`np.sqrt(rms)`"]),
+
+    # (blind set 2026-12-06c)
+    "projected rows divided by the last point's row (x / x[-1], the column-vector habit)": ("lab09.ex3", """
+        def project(P, points):
+            P = np.asarray(P, dtype=np.float64)
+            pts = np.asarray(points, dtype=np.float64)
+            single = pts.ndim == 1
+            pts = pts.reshape(-1, 3)
+            x = np.hstack([pts, np.ones((pts.shape[0], 1))]) @ P.T
+            w = x[:, 2].copy()
+            with np.errstate(divide="ignore", invalid="ignore"):
+                x = x / x[-1]
+            uv = x[:, :2]
+            uv[w <= 0] = np.nan
+            return uv[0] if single else uv
+        """, ["changing `x = x / x[-1]` to `x = x / x[:, -1:]`"]),
 }
 
 

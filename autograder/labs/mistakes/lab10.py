@@ -1131,6 +1131,23 @@ MISTAKES = {
     "decompose_camera_matrix negating P by the sign of P[2, 2]": ("lab10.ex5", reference_def_with(
         "lab10_camera2", "decompose_camera_matrix", "if np.linalg.det(P[:, :3]) < 0:", "if P[2, 2] < 0:"),
         ["your code tests `P[2, 2] < 0`"]),
+
+    # (blind set 2026-12-06c)
+    "weak perspective dividing y by the points' mean depth, not the z_avg given": ("lab10.ex2", """
+        def weak_perspective_project(points, f, z_avg=None):
+            pts = np.asarray(points, dtype=np.float64)
+            single = pts.ndim == 1
+            pts = np.atleast_2d(pts)
+            X, Y, Z = pts[:, 0], pts[:, 1], pts[:, 2]
+            z_mean = Z.mean()
+            if z_avg is None:
+                z_avg = z_mean
+            z_avg = float(z_avg)
+            x = f * X / z_avg
+            y = f * Y / z_mean
+            out = np.column_stack([x, y])
+            return out[0] if single else out
+        """, ["changing `f * y / z_mean` to `f * y / z_avg`"]),
 }
 
 

@@ -1001,4 +1001,22 @@ MISTAKES = {
         "lab11_two_view", "two_view_reconstruction", "points3d = triangulate(P1, P2, pts1, pts2)",
         "points3d = triangulate(P1, P2, pts1, pts2)\npoints3d = points3d / np.linalg.norm(points3d, axis=1, keepdims=True)"),
         ["all lie at the same distance from camera 1"]),
+
+    # (blind set 2026-12-06c)
+    "the image's width c taken by the loop over the lines' coefficients (a, b, c)": ("lab11.ex2", """
+        def draw_epipolar_lines(image, lines):
+            out = np.array(image, dtype=np.uint8, copy=True)
+            r, c = out.shape[:2]
+            for a, b, c in np.asarray(lines, dtype=np.float64).reshape(-1, 3):
+                if abs(b) >= abs(a):
+                    p, q = (0.0, -c / b), (c - 1.0, -(c + a * (c - 1.0)) / b)
+                else:
+                    p, q = (-c / a, 0.0), (-(c + b * (r - 1.0)) / a, r - 1.0)
+                limit = 4.0 * (abs(c) + r)
+                ends = [tuple(int(round(np.clip(v, -limit, limit))) for v in point) for point in (p, q)]
+                ok, p, q = cv2.clipLine((0, 0, int(abs(c)) + 1, int(r)), *ends)
+                if ok:
+                    cv2.line(out, p, q, 255, 1)
+            return out
+        """, ["takes `c` as its own variable", "value is never read -- one name for two values"]),
 }

@@ -1353,6 +1353,37 @@ MISTAKES = {
             X.reshape(-1, 3)[behind] = np.nan
             return X
         """, ["the same cameras at a negative scale", "the third coordinate of P X is <= 0"]),
+
+    # (blind set 2026-12-06c)
+    "a scanline DP whose loop over the rows stops one short": ("lab12.ex5", """
+        def dp_stereo(left, right, max_disparity=64, block_size=5, smoothness=None):
+            s = DEFAULT_SMOOTHNESS if smoothness is None else float(smoothness)
+            left, right = _grey_float(left), _grey_float(right)
+            D = int(max_disparity) + 1
+            costs = _sad_volume(left, right, D - 1, int(block_size))      # (W, H, D)
+            if s == 0:
+                return np.argmin(costs, axis=2).T.astype(np.float64)
+            width, height = costs.shape[0], costs.shape[1]
+            ramp = (s * np.arange(D)).astype(np.float32)
+            candidates = np.arange(D)
+            disparity = np.zeros((height, width))
+            for y in range(height - 1):
+                row = costs[:, y, :]
+                energy = np.empty_like(row)
+                energy[0] = row[0]
+                for x in range(1, width):
+                    previous = energy[x - 1]
+                    from_below = np.minimum.accumulate(previous - ramp) + ramp
+                    from_above = np.minimum.accumulate((previous + ramp)[::-1])[::-1] - ramp
+                    best = np.minimum(from_below, from_above)
+                    energy[x] = row[x] + best - best.min()
+                path = np.empty(width, dtype=np.int64)
+                path[-1] = np.argmin(energy[-1])
+                for x in range(width - 1, 0, -1):
+                    path[x - 1] = np.argmin(energy[x - 1] + ramp[np.abs(candidates - path[x])])
+                disparity[y] = path
+            return disparity
+        """, ["the last row is never computed"]),
 }
 
 
