@@ -5498,3 +5498,22 @@ def test_a_calls_two_arguments_alike_but_for_a_size_twin_are_twins():
     told = {str(student.fix(m).changes): student.twin_items(m) for m in swaps if student.fix(m) is not None}
     assert any(twin for text, twin in told.items() if "meshgrid" in text)
     assert not any(twin for text, twin in told.items() if "maximum" in text)
+
+
+def test_items_numbered_from_one_are_offered_their_index_from_zero():
+    """`for i, frame in enumerate(frames, start=1)` writing row `i` (the blind set 1206b's 10/04): the numbering
+    from 0 is offered; an enumerate from 0 is offered nothing of the kind."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(frames):
+            out = np.full((len(frames), 2), np.nan)
+            for i, frame in enumerate(frames, start=1):
+                out[i] = frame
+            return out
+    """)
+    offered = {m.edits[0][3] for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+               if m.operator == "zero_based"}
+    assert "enumerate(frames)" in offered
+    plain = source.replace("enumerate(frames, start=1)", "enumerate(frames)")
+    assert not any(m.operator == "zero_based" for m in repair.mutants_of(plain, {"graded"}, phrased=False)["graded"])

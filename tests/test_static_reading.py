@@ -1863,3 +1863,24 @@ def test_opencv_flags_joined_with_or_passed_into_another_parameter_are_read():
     found = one(source)
     assert "cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP is passed as cv2.warpAffine's dst" in found
     assert not any("is passed as" in mistake for mistake in one(source.replace("size, cv2.INTER", "size, flags=cv2.INTER")))
+
+
+def test_one_samples_pairs_drawn_by_two_random_draws_are_read():
+    """`src[rng.choice(n, 4)]` beside `dst[rng.choice(n, 4)]` (the blind set 1206b's 08/04): the rows of one array
+    are not the partners of the other's. One draw indexing both, or two draws each indexing both arrays (a sample
+    and a check set), is not read as one."""
+    source = """
+        def f(src, dst, rng, n):
+            for _ in range(10):
+                a = src[rng.choice(n, 4, replace=False)]
+                b = dst[rng.choice(n, 4, replace=False)]
+            keep = src[src[:, 0] > 0]
+            return a, b, keep
+        """
+    assert "one sample's pairs drawn apart, by two random draws" in one(source)
+    assert "one sample's pairs drawn apart, by two random draws" not in one("""
+        def f(src, dst, rng, n):
+            pick = rng.choice(n, 4, replace=False)
+            check = rng.permutation(n)[:10]
+            return src[pick], dst[pick], src[check], dst[check]
+        """)

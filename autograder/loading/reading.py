@@ -265,6 +265,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _safely(_distortion_in_pixels, name, function)
     found += _safely(_loop_variable_rebinds, name, function)
     found += _safely(_loop_variable_hides_a_value, name, function)
+    found += _safely(_pairs_drawn_apart, name, function)
     found += _safely(_loop_variable_assigned_in_vain, name, function)
     found += _safely(_fisheye_model, name, function)
     found += _safely(_identity_with_a_literal, name, function)
@@ -1311,6 +1312,59 @@ def _third_operand_as_out(name, function) -> list[Finding]:
                             f"method .dot is `out`, the array the result is written into, so it computes {first} "
                             f"with {second} alone and overwrites `{third}`; for a product of three, write "
                             f"{first} @ {second} @ {third}", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ a sample's pairs drawn apart
+_DRAWS = frozenset({"choice", "permutation", "sample", "integers", "randint"})
+_PAIRED_WORDS = ({"src", "dst"}, {"left", "right"}, {"source", "destination"})
+
+
+def _a_draw(node) -> bool:
+    """A random draw of indices: `rng.choice(n, 4)`, `np.random.permutation(n)[:4]`, `random.sample(...)`."""
+    if isinstance(node, ast.Subscript):
+        node = node.value
+    return isinstance(node, ast.Call) and _call_name(node) in _DRAWS
+
+
+def _paired(a: str, b: str) -> bool:
+    """Two arrays of one set of pairs: one digit apart (`pts1`/`pts2`, `x1`/`x2`) or a pair's words
+    (`src`/`dst`, `left_pts`/`right_pts`)."""
+    if len(a) == len(b):
+        apart = [(x, y) for x, y in zip(a, b) if x != y]
+        if len(apart) == 1 and all(c.isdigit() for c in apart[0]):
+            return True
+    parts_a, parts_b = a.split("_"), b.split("_")
+    return len(parts_a) == len(parts_b) and sum(x != y for x, y in zip(parts_a, parts_b)) == 1 and any(
+        {x, y} in _PAIRED_WORDS for x, y in zip(parts_a, parts_b) if x != y)
+
+
+def _pairs_drawn_apart(name, function) -> list[Finding]:
+    """``src[rng.choice(n, 4)]`` beside ``dst[rng.choice(n, 4)]`` (a RANSAC sample): the two arrays of one set
+    of pairs, each indexed only by a random draw of its own -- the points drawn from one are not the partners of
+    those drawn from the other. (One pass over the def's nodes.)"""
+    drawn = {statement.targets[0].id for statement in _nodes(function) if isinstance(statement, ast.Assign)
+             and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name) and _a_draw(statement.value)}
+    indexed: dict[str, dict] = {}   # array -> {its index's text: the subscript}
+    for node in _nodes(function):
+        if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) and isinstance(node.value, ast.Name):
+            key = node.slice.id if isinstance(node.slice, ast.Name) and node.slice.id in drawn else \
+                f"draw@{id(node.slice)}" if _a_draw(node.slice) else None
+            if key is not None:
+                indexed.setdefault(node.value.id, {})[key] = node
+    arrays = sorted(indexed)
+    for i, a in enumerate(arrays):
+        for b in arrays[i + 1:]:
+            if _paired(a, b) and not set(indexed[a]) & set(indexed[b]):
+                first, second = sorted((next(iter(indexed[a].values())), next(iter(indexed[b].values()))),
+                                       key=lambda node: (node.lineno, node.col_offset))
+                a, b = first.value.id, second.value.id   # (told in the order they are written)
+                return [Finding(name, _line(second), "one sample's pairs drawn apart, by two random draws",
+                                f"{name} (lines {_line(first)} and {_line(second)}) indexes `{a}` with "
+                                f"`{ast.unparse(first.slice)}` and `{b}` with `{ast.unparse(second.slice)}`, two "
+                                f"separate random draws: the rows taken from `{a}` are not the partners of those "
+                                f"taken from `{b}` (row k of one pairs with row k of the other); draw the indices "
+                                f"once and take both with them", certain=True)]
     return []
 
 

@@ -6110,6 +6110,12 @@ def _layout_and_type_changes(node):
         # positions counted from 1 (`np.arange(1, width + 1)`) where they are indices, from 0
         counted = ast.Call(copy.deepcopy(node.func), [copy.deepcopy(node.args[1].left)], copy.deepcopy(node.keywords))
         yield "zero_based", ast.unparse(counted), ""
+    if isinstance(node, ast.Call) and _dotted(node.func) == "enumerate" and node.args \
+            and (len(node.args) == 2 or any(k.arg == "start" for k in node.keywords)):
+        # items numbered from another start (`enumerate(frames, start=1)`) where their index belongs, from 0
+        counted = ast.Call(copy.deepcopy(node.func), [copy.deepcopy(node.args[0])],
+                           [copy.deepcopy(k) for k in node.keywords if k.arg != "start"])
+        yield "zero_based", ast.unparse(counted), ""
     if isinstance(node, ast.Subscript) and _dotted(node.value) in ("np.mgrid", "np.ogrid", "numpy.mgrid", "numpy.ogrid"):
         counted = copy.deepcopy(node)   # np.mgrid[1:cols + 1, 1:rows + 1] -> np.mgrid[0:cols, 0:rows]
         changed = False

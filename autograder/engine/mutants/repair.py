@@ -1575,6 +1575,8 @@ class _Student:
             _replace(_parents(copied), target, made)
         after = ast.unparse(ast.fix_missing_locations(copied))
         before, after = (" ".join(text.split()) for text in (before, after))
+        # (a minus put on a term is shown as the student would write it: `z0 + -c` is `z0 - c`)
+        after = re.sub(r" - -(?=[\w(])", " + ", re.sub(r" \+ -(?=[\w(])", " - ", after))
         if before == after:
             return None
         # (a long line: its calls with the unchanged arguments as `...` where that fits whole, so the

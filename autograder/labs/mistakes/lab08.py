@@ -1339,6 +1339,24 @@ MISTAKES = {
         "lab08_homographies", "blend_multiband", "bands.append(w * band_a + (1 - w) * band_b)",
         "bands.append(cv2.addWeighted(band_a, w, band_b, 1 - w, 0))"),
         ["cv2.addweighted needs one number for alpha", "multiply the arrays by it"]),
+
+    "a RANSAC drawing each sample's source and destination points by two draws": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None, confidence=0.999, max_iterations=5000):
+            src = np.asarray(src, dtype=np.float64).reshape(-1, 2)
+            dst = np.asarray(dst, dtype=np.float64).reshape(-1, 2)
+            n = len(src)
+            rng = np.random.default_rng(seed)
+            best = np.zeros(n, dtype=bool)
+            for _ in range(300):
+                H = homography_dlt(src[rng.choice(n, 4, replace=False)], dst[rng.choice(n, 4, replace=False)])
+                with np.errstate(all="ignore"):
+                    inliers = np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+                if inliers.sum() > best.sum():
+                    best = inliers
+            if best.sum() < 4:
+                return homography_dlt(src, dst), np.ones(n, dtype=bool)
+            return homography_dlt(src[best], dst[best]), best
+        """, ["two separate random draws", "draw the indices once and take both with them"]),
 }
 
 

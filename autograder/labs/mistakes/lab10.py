@@ -1148,6 +1148,15 @@ MISTAKES = {
             out = np.column_stack([x, y])
             return out[0] if single else out
         """, ["changing `f * y / z_mean` to `f * y / z_avg`"]),
+
+    "frames numbered from 1 where their row index belongs (enumerate(frames, start=1))": ("lab10.ext3", """
+        def track_pose(frames, pattern_size, square_size, K, dist=None):
+            poses = np.full((len(frames), 6), np.nan)
+            for i, frame in enumerate(frames, start=1):
+                rvec, tvec, _ = estimate_pose(frame, pattern_size, square_size, K, dist)
+                poses[i] = np.concatenate([rvec, tvec])
+            return poses
+        """, ["changing `enumerate(frames, start=1)` to `enumerate(frames)`"]),
 }
 
 
