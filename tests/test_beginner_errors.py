@@ -84,6 +84,11 @@ CASES = [
                           np.eye(2)), {}, ["cameraMatrix of shape (3, 3)", "(2, 2)"]),
     ("copyMakeBorder", (GREY, -1, 2, 2, 2, cv2.BORDER_CONSTANT), {}, ["borders of 0 pixels or more", "top=-1"]),
     ("boxFilter", (GREY, -1, (0, 5)), {}, ["kernel size of at least 1", "(0, 5)"]),
+    # a pair given inside a size (`dsize if dsize else w, h`): no number to round
+    ("warpAffine", (IMAGE, np.eye(3)[:2], ((60, 40), 40)), {}, ["dsize as 2 numbers", "((60, 40), 40)",
+                                                               "a sequence inside the sequence"]),
+    # a grey float mask: only its dtype is converted (no colour conversion of a one-channel array)
+    ("distanceTransform", (np.zeros((40, 60)), cv2.DIST_L2, 3), {}, ["grey uint8 image", "np.clip(x, 0, 255)"]),
     # a weight per pixel given where one number weighs the whole image (a mask level as addWeighted's alpha)
     ("addWeighted", (IMAGE.astype(np.float32), np.full((40, 60, 1), 0.5, np.float32), IMAGE.astype(np.float32), 0.5,
                      0), {}, ["needs one number for alpha", "(40, 60, 1)", "multiply the arrays by it"]),
@@ -163,6 +168,20 @@ def test_an_integer_array_where_floats_are_expected_gets_the_fix_as_hint():
     with pytest.raises(Fail) as failed:
         trial.expect_array(np.arange(4, dtype=np.uint8), "f()", kind="f")
     assert "wraps around at 256" in failed.value.hint
+
+
+def test_arrays_returned_in_a_tuple_are_told_as_the_tuple_they_are():
+    """`return x, y` for (N, 2) points and `return E,` (a trailing comma): what the tuple holds is told, not only
+    the shape NumPy makes of it; a tuple of numbers is converted as before."""
+    check = select(["lab07.ex1"])[0].checks[0]
+    trial = Trial(None, check)
+    with pytest.raises(Fail) as failed:
+        trial.expect_array((np.zeros(4), np.ones(4)), "f()", shape=(None, 2), kind="f")
+    assert "a tuple of 2 arrays of shape (4,), one per column" in failed.value.message
+    with pytest.raises(Fail) as failed:
+        trial.expect_array((np.eye(3),), "f()", shape=(3, 3), kind="f")
+    assert "a tuple holding one array of shape (3, 3)" in failed.value.message
+    assert trial.expect_array((1.0, 2.0), "f()", shape=(2,), kind="f").shape == (2,)
 
 
 # ------------------------------------------------------------------ graded end to end
@@ -406,3 +425,8 @@ def test_a_depth_opencv_does_not_take_is_told_with_the_ones_it_does():
     said = beginner._wrong_image("cv2.cvtColor", message, [("src", mask)], {})
     assert said == "cv2.cvtColor takes src as uint8, uint16 or float32; yours is float64: convert it with " \
                    "x.astype(np.float32)", said
+
+
+def test_a_grey_array_is_not_told_to_be_converted_from_colour():
+    said = sentence("distanceTransform", np.zeros((40, 60)), cv2.DIST_L2, 3)
+    assert "cvtColor" not in said and "astype(np.uint8)" in said, said

@@ -63,8 +63,7 @@ EXCEPTION_EXPLAINED = (   # autograder/sandbox/beginner.py: the value of the cal
     "{} needs {} as exactly {} points of {} float32 coordinates, shape ({}, {}); yours is {}: np.float32({})",
     "{} needs points of shape (N, 1, 2) and a 3x3 matrix; yours are {}: pass points.reshape(-1, 1, 2)",
     "{} needs the points in {} as float32 or float64; yours are {}: convert them with {}.astype(np.float64)",
-    "{} needs {} as a grey uint8 image (H, W); yours is {}: convert it with cv2.cvtColor(image, "
-    "cv2.COLOR_BGR2GRAY) and np.clip(x, 0, 255).astype(np.uint8)",
+    "{} needs {} as a grey uint8 image (H, W); yours is {}: convert it with {}",
     "{} cannot work on {}, a {} image: OpenCV images are uint8 (or float32); convert it with np.clip(x, 0, "
     "255).astype(np.uint8) or x.astype(np.float32)",
     "{} got None for {}: no image (did cv2.imread find the file, or a function of yours return nothing?)",

@@ -740,3 +740,19 @@ def test_an_attribute_read_through_the_list_holding_the_item_is_told_where_it_wa
     assert form is not None and "`knnMatch` (line 5) answers each query with a sequence" in form.sentence
     other = pairs.replace("matcher.knnMatch(d1, d2, k=2)", "list(d1)")
     assert _raised_at(other, 6, "'tuple' object has no attribute 'distance'", args=(None,) * 3) is None
+
+
+def test_a_keyword_a_numpy_function_does_not_take_is_told_with_its_parameters():
+    """`np.diag([sx, sy, 1], dtype=np.float64)` (the blind set 1206d's 07/06): np.diag has no dtype; its own
+    parameters are told. A keyword of a function of the module's own is not."""
+    source = """
+        import numpy as np
+
+        def f(sx, sy):
+            return np.diag([sx, sy, 1.0], dtype=np.float64)
+        """
+    form = _raised_at(source, 5, "diag() got an unexpected keyword argument 'dtype'", args=(1.0, 2.0))
+    assert form is not None and "calls `np.diag` with `dtype=` (line 5)" in form.sentence \
+        and "(its parameters: v, k)" in form.sentence, form
+    own = source.replace("np.diag(", "helper(")
+    assert _raised_at(own, 5, "helper() got an unexpected keyword argument 'dtype'", args=(1.0, 2.0)) is None

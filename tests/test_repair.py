@@ -5517,3 +5517,17 @@ def test_items_numbered_from_one_are_offered_their_index_from_zero():
     assert "enumerate(frames)" in offered
     plain = source.replace("enumerate(frames, start=1)", "enumerate(frames)")
     assert not any(m.operator == "zero_based" for m in repair.mutants_of(plain, {"graded"}, phrased=False)["graded"])
+
+
+def test_a_squeeze_is_offered_its_array_as_made():
+    """`np.stack(...).squeeze()` (the blind set 1206d's 10/06): every length-1 axis dropped, those the API keeps
+    too; the array as made is offered."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(parts):
+            return np.stack(parts).squeeze()
+    """)
+    changes = [m for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+               if m.operator == "unwrap" and m.edits[0][3] == "method"]
+    assert changes

@@ -1884,3 +1884,33 @@ def test_one_samples_pairs_drawn_by_two_random_draws_are_read():
             check = rng.permutation(n)[:10]
             return src[pick], dst[pick], src[check], dst[check]
         """)
+
+
+def test_a_mutable_default_written_into_is_read():
+    """`def _condition(pts, T=np.eye(3)):` filling T in place (the blind set 1206d's 11/04): every call leaving T
+    out shares one array. A default None, or a copy made first, is not read as one."""
+    source = """
+        def _condition(pts, T=np.eye(3)):
+            T[0, 0] = 1.0 / pts.std()
+            return pts * T[0, 0], T
+        """
+    assert "a default made once and written into by every call" in one(source)
+    assert "a default made once and written into by every call" not in one(
+        source.replace("T[0, 0] = 1.0", "T = T.copy()\n            T[0, 0] = 1.0"))
+    assert "a default made once and written into by every call" not in one(
+        source.replace("T=np.eye(3)", "T=None").replace("T[0, 0] = 1.0", "T = np.eye(3)\n            T[0, 0] = 1.0"))
+
+
+def test_a_conditional_taken_into_a_tuple_is_read():
+    """`size = dsize if dsize is not None else width, height` (the blind set 1206d's 07/04): the comma binds
+    looser than the conditional; bracketed either way it is not read."""
+    source = """
+        def f(image, dsize=None):
+            height, width = image.shape[:2]
+            size = dsize if dsize is not None else width, height
+            return size
+        """
+    assert "a conditional expression taken into a tuple (the comma binds looser)" in one(source)
+    for meant in ("dsize if dsize is not None else (width, height)", "(dsize if dsize is not None else width), height"):
+        assert "a conditional expression taken into a tuple (the comma binds looser)" not in one(
+            source.replace("dsize if dsize is not None else width, height", meant))

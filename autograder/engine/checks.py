@@ -495,6 +495,7 @@ class Trial:
             ``value`` (lists of numbers are accepted and converted when only
             ``kind`` is constrained).
         """
+        held = _arrays_held(value, shape) if isinstance(value, (list, tuple)) else ""
         if isinstance(value, (list, tuple)) and dtype is None:
             try:
                 value = np.asarray(value, dtype=float)
@@ -505,6 +506,8 @@ class Trial:
                       + (f" of shape {_shape_text(shape)}" if shape is not None else "") + self._why_none(value))
         if shape is not None:
             if value.ndim != len(shape) or any(s is not None and s != v for s, v in zip(shape, value.shape)):
+                if held:   # (a tuple of arrays made one array: what it held says what went wrong)
+                    self.fail(f"{what} returned {held}", mistake=ARRAYS_HELD)
                 misread = self._why_misread(value)
                 if misread is not None:   # the code's own names say which output it is
                     self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
@@ -831,6 +834,27 @@ def _has_fraction(values: np.ndarray) -> bool:
     """Whether a finite value of ``values`` has a fractional part."""
     finite = values[np.isfinite(values)]
     return bool(finite.size) and not np.array_equal(finite, np.round(finite))
+
+
+ARRAYS_HELD = "a tuple or list of arrays returned where one array is asked"
+
+
+def _arrays_held(value, shape) -> str:
+    """What a tuple or list of arrays returned where one array of ``shape`` is asked holds, where it explains
+    the shape it makes: one array in a tuple (`return E,`: a comma after the value), or one array per column
+    (`return x, y` for an (N, 2) array); "" otherwise."""
+    items = list(value)
+    if not items or not all(isinstance(item, np.ndarray) for item in items) \
+            or len({item.shape for item in items}) != 1 or shape is None:
+        return ""
+    kind, inner = type(value).__name__, items[0].shape
+    if len(items) == 1 and len(inner) == len(shape):
+        return measured(f"a {kind} holding one array of shape {inner}, not the array itself (a comma after the "
+                        f"returned value makes a tuple of one)")
+    if len(inner) == 1 and len(shape) == 2 and shape[1] == len(items):
+        return measured(f"a {kind} of {len(items)} arrays of shape {inner}, one per column, where one array of "
+                        f"shape {_shape_text(shape)} is asked: stack them as its columns (np.column_stack)")
+    return ""
 
 
 def _type_name(value) -> str:

@@ -118,8 +118,8 @@ def shape_form(got: tuple, expected: tuple) -> Form | None:
         rows, columns = expected
         if rows != columns and got == (columns, rows):
             # (the lengths alone: an array transposed, or one made with its two sizes in the other order)
-            return Form("its rows and columns are exchanged (transposed, or made with its two sizes in the other "
-                        "order)", "the result is transposed")
+            return Form("it looks like its rows and columns are exchanged (transposed, or made with its two sizes "
+                        "in the other order)", "the result is transposed")
         if got == (rows - 1, columns) and rows == columns in (3, 4):
             return Form(f"it looks like the {_size(got)} affine form, the matrix without its last row "
                         f"[0 ... 0 1]; a {_size(expected)} homogeneous matrix is asked",

@@ -159,6 +159,9 @@ def explained(code: Code, traceback_text: str, message: str, function: str, args
     found = _CONTAINER_ATTRIBUTE.search(message)
     if found:
         return _item_wrapped(fn, line, *found.groups())
+    found = _UNEXPECTED_KEYWORD.search(message)
+    if found:
+        return _keyword_not_taken(fn, line, *found.groups())
     found = _UNBOUND.search(message)
     if found:
         return _local_read_first(fn, line, found.group(1) or found.group(2))
@@ -349,6 +352,37 @@ def _wrapped_items(fn, looped, line: int) -> str:
             return (f"`{call.func.attr}` (line {call.lineno}) answers each query with a sequence of its nearest "
                     f"matches, and the loop takes those sequences")
     return ""
+
+
+_UNEXPECTED_KEYWORD = re.compile(r"(\w+)\(\) got an unexpected keyword argument '(\w+)'")
+KEYWORD_NOT_TAKEN = "a keyword argument the function called does not take"
+
+
+def _keyword_not_taken(fn, line: int, called: str, keyword: str) -> Form | None:
+    """``np.diag(v, dtype=float)`` on the raising line: NumPy's function takes no such parameter -- its own
+    parameters are told (a dtype is given to the array, before or after)."""
+    import inspect
+
+    for node in _own_nodes(fn):
+        if isinstance(node, ast.Call) and node.lineno <= line <= getattr(node, "end_lineno", node.lineno) \
+                and _path(node.func).rpartition(".")[2] == called and any(k.arg == keyword for k in node.keywords):
+            path = _path(node.func)
+            head, _, rest = path.partition(".")
+            if head not in ("np", "numpy"):
+                return None
+            try:
+                import functools
+
+                target = functools.reduce(getattr, rest.split("."), np)
+                parameters = [p for p in inspect.signature(target).parameters if p not in ("args", "kwargs")]
+            except (AttributeError, TypeError, ValueError):
+                return None
+            return Form(measured(f"your `{fn.name}` calls `{path}` with `{keyword}=` (line {line}), a parameter it does "
+                                 f"not have (its parameters: {', '.join(parameters)}): " + (
+                                     "give the dtype to the array itself, before or after (`np.asarray(..., "
+                                     "dtype=...)`, `.astype(...)`)" if keyword == "dtype" else
+                                     f"give `{keyword}` another way")), KEYWORD_NOT_TAKEN)
+    return None
 
 
 _INHOMOGENEOUS = re.compile(r"inhomogeneous shape|setting an array element with a sequence")

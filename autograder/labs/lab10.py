@@ -2063,6 +2063,8 @@ def _triangular_factor(R) -> str:
     scale = np.abs(R).max()
     if scale == 0 or not np.isfinite(R).all():
         return ""
+    if np.abs(R - np.diag(np.diag(R))).max() <= 1e-9 * scale:
+        return ""   # (diagonal: a triangular factor has entries above its diagonal -- `S * R`, element-wise, keeps none)
     for side, zeros in (("upper", np.tril(R, -1)), ("lower", np.triu(R, 1))):
         if np.abs(zeros).max() <= 1e-9 * scale:
             return measured(f": it is {side} triangular, as a QR or RQ decomposition's triangular factor is; the "

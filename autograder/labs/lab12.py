@@ -43,6 +43,7 @@ from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe,
                       judge_default_is_the_apis,
                       judge_parameter_changes_result, judge_parameter_used, name_mistake, over_variants,
                       repeating_border, same_informative_result)
+from ..engine.mutants.repair import found_on_earlier_checks
 from ..engine.pictures import disparity_error_picture, disparity_picture, side_by_side
 from ..engine.registry import Lab
 from .code_signs import (DIVIDES_BY_16, STEREO_MATCHER, constant_factor, factor_words, name_batched_vt_row,
@@ -2761,7 +2762,9 @@ def dp_depth_edge(t):
         return truth.bad_pixel_rate(np.nan_to_num(got.astype(np.float64)), scene.judged, scene.threshold) \
             if usable else None
     unsmoothed, almost = rate(0), rate(ALMOST_NO_PENALTY)
-    if unsmoothed is not None and almost is not None and \
+    # (a change of the code confirmed on an earlier check -- `np.maximum` of the two halves made `np.minimum` --
+    # limits the jumps too: its account comes first, the rule's guess at the cause is not told beside it)
+    if unsmoothed is not None and almost is not None and not found_on_earlier_checks(t, DP_FUNCTION) and \
             unsmoothed <= figures("deep_step", "dp_5_s0")["bad"] + MARGIN and almost > unsmoothed + MARGIN:
         # (measured: with no penalty the edge is found, with almost none it is not -- so it is not the
         # penalty's size that stops the map, but which jumps the minimum may take)

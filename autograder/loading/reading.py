@@ -266,6 +266,8 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _safely(_loop_variable_rebinds, name, function)
     found += _safely(_loop_variable_hides_a_value, name, function)
     found += _safely(_pairs_drawn_apart, name, function)
+    found += _safely(_mutable_default_written, name, function)
+    found += _safely(_conditional_in_a_tuple, name, function)
     found += _safely(_loop_variable_assigned_in_vain, name, function)
     found += _safely(_fisheye_model, name, function)
     found += _safely(_identity_with_a_literal, name, function)
@@ -1312,6 +1314,26 @@ def _third_operand_as_out(name, function) -> list[Finding]:
                             f"method .dot is `out`, the array the result is written into, so it computes {first} "
                             f"with {second} alone and overwrites `{third}`; for a product of three, write "
                             f"{first} @ {second} @ {third}", certain=True)]
+    return []
+
+
+# ------------------------------------------------------------------ a conditional taken into a tuple
+def _conditional_in_a_tuple(name, function) -> list[Finding]:
+    """``size = dsize if dsize is not None else width, height``: the comma binds looser than ``if ... else``,
+    so the value is the pair (the conditional, ``height``), not the conditional between ``dsize`` and the pair.
+    A conditional in brackets (``(a if c else b), d``: the tuple starts before it) is meant as written."""
+    for node in _nodes(function):
+        if isinstance(node, (ast.Assign, ast.Return)) and isinstance(node.value, ast.Tuple) and node.value.elts \
+                and isinstance(node.value.elts[0], ast.IfExp) and len(node.value.elts) >= 2 \
+                and (node.value.lineno, node.value.col_offset) == (node.value.elts[0].lineno,
+                                                                    node.value.elts[0].col_offset):
+            line, choice = _line(node), node.value.elts[0]
+            rest = ", ".join(ast.unparse(e) for e in node.value.elts[1:])
+            meant = f"{ast.unparse(choice.body)} if {ast.unparse(choice.test)} else ({ast.unparse(choice.orelse)}, {rest})"
+            return [Finding(name, line, "a conditional expression taken into a tuple (the comma binds looser)",
+                            f"{name} (line {line}) writes `{_shortened(node.value, 80)}`: a comma binds looser than "
+                            f"`if ... else`, so this is a pair whose first item is the whole conditional and whose "
+                            f"second is `{rest}`; for the pair as the other choice, bracket it: `{meant}`")]
     return []
 
 
@@ -3222,6 +3244,51 @@ def _state_kept_between_calls(name, function, lists=frozenset()) -> list[Finding
 
 
 _MODULE_ARRAYS = frozenset({"array", "asarray", "eye", "identity", "zeros", "ones", "full", "diag"})
+_GROWN_OR_FILLED = GROWS | {"update", "fill", "sort", "reverse", "resize", "clear"}
+
+
+def _mutable_default_written(name, function) -> list[Finding]:
+    """``def _condition(pts, T=np.eye(3)):`` writing into ``T`` (``T[:2, 2] = ...``, ``T *= s``, ``rows.append``):
+    a default is made once, when the def runs, so every call that leaves the parameter out writes into that one
+    object and gets it back -- two calls' results are the same array. A parameter rebound before it is written
+    (``T = T.copy()``) is not read as one. (One pass over the def's statements in order.)"""
+    arguments = function.args
+    positional = arguments.posonlyargs + arguments.args
+    defaults = dict(zip((a.arg for a in positional[len(positional) - len(arguments.defaults):]), arguments.defaults))
+    defaults |= {a.arg: d for a, d in zip(arguments.kwonlyargs, arguments.kw_defaults) if d is not None}
+    mutable = {parameter: default for parameter, default in defaults.items()
+               if isinstance(default, (ast.List, ast.Dict, ast.Set)) or (isinstance(default, ast.Call) and (
+                   _call_name(default) in _MODULE_ARRAYS | {"list", "dict", "set"}))}
+    if not mutable:
+        return []
+    for statement in _statements_in_order(function):
+        targets = statement.targets if isinstance(statement, ast.Assign) else \
+            [statement.target] if isinstance(statement, ast.AugAssign) else []
+        written = None
+        for target in targets:
+            if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name) and target.value.id in mutable:
+                written = target.value.id
+            elif isinstance(statement, ast.AugAssign) and isinstance(target, ast.Name) and target.id in mutable:
+                written = target.id
+        call = statement.value if isinstance(statement, ast.Expr) else None
+        if isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute) and call.func.attr in _GROWN_OR_FILLED \
+                and isinstance(call.func.value, ast.Name) and call.func.value.id in mutable:
+            written = call.func.value.id
+        if written is not None:
+            line = _line(statement)
+            default = ast.unparse(mutable[written])
+            return [Finding(name, line, "a default made once and written into by every call",
+                            f"{name} (line {line}) writes into `{written}`, whose default `{default}` is made once, "
+                            f"when the def runs: every call that leaves `{written}` out writes into that one object "
+                            f"and gets it back, so two calls share it; give it the default None and make a new one "
+                            f"in the function", certain=True)]
+        if isinstance(statement, ast.Assign):   # (rebound first: a copy of its own from here on)
+            for target in statement.targets:
+                for bound in (n.id for n in ast.walk(target) if isinstance(n, ast.Name)):
+                    mutable.pop(bound, None)
+            if not mutable:
+                return []
+    return []
 
 
 def _module_array_changed(name, function, arrays) -> list[Finding]:

@@ -145,6 +145,13 @@ def _bad_argument(function, message, arguments, values) -> str:
             return (f"{function} needs {name} as whole numbers within OpenCV's int range (below 2^31 in size); "
                     f"yours is {value}: a point that far away cannot be drawn, clip the end points to the "
                     "image first (cv2.clipLine)")
+        given = values.get(name)
+        if "wrong type" in why and isinstance(given, (tuple, list)) and any(
+                isinstance(item, (tuple, list)) or _is_array(item) for item in given):
+            # (an item that is itself a pair -- `dsize if dsize else w, h` makes ((w, h), h) -- is no number
+            # to round)
+            return (f"{function} needs {name} as {len(given)} numbers; yours is {value}, whose items are not all "
+                    f"numbers (a sequence inside the sequence)")
         if "wrong type" in why:
             what = "(width, height)" if name in ("dsize", "size", "ksize") else "pixel coordinates"
             return (f"{function} needs {name} as whole numbers, {what}; yours is {value}: round them, "
@@ -242,9 +249,13 @@ def _wrong_image(function, message, arguments, values) -> str:
     if re.search(r"CV_8UC1|8UC1", message):
         for name, image in images:
             if str(image.dtype) != "uint8" or image.ndim != 2:
+                # (each conversion only where it is needed: an (H, W) array is grey already -- a mask made
+                # float by np.zeros needs only its dtype)
+                steps = (["cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)"] if image.ndim == 3 else []) + (
+                    ["np.clip(x, 0, 255).astype(np.uint8)" if str(image.dtype) != "bool" else "x.astype(np.uint8)"]
+                    if str(image.dtype) != "uint8" else [])
                 return (f"{function} needs {name} as a grey uint8 image (H, W); yours is {_shown(image)}: "
-                        "convert it with cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) and "
-                        "np.clip(x, 0, 255).astype(np.uint8)")
+                        f"convert it with {' and '.join(steps)}")
     allowed = re.search(r"VDepth = [^;\]]*Set<([\d, ]+)>", message)
     given = re.search(r"'depth' is (\d+)", message)
     if allowed and given:

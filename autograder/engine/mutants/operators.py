@@ -837,14 +837,6 @@ _IMAGE_FILTERS = frozenset({"blur", "boxFilter", "sqrBoxFilter", "GaussianBlur",
                             "bilateralFilter"})
 
 
-def _constant_index(index) -> int | None:
-    """The whole number an index is written as (`2`, `-1`), or None."""
-    if isinstance(index, ast.UnaryOp) and isinstance(index.op, ast.USub) and isinstance(index.operand, ast.Constant) \
-            and type(index.operand.value) is int:
-        return -index.operand.value
-    return index.value if isinstance(index, ast.Constant) and type(index.value) is int else None
-
-
 def _filters_a_made_stack(node, parents) -> bool:
     """An OpenCV filter, or a helper of the module, called on a name the def binds to a stack of images
     (`np.zeros((D, h, w))`, `np.stack(...)`): the whole stack given where each image belongs."""
@@ -3992,6 +3984,9 @@ def _student_changes(node, parent, parents, words):
     if dotted in ("np.maximum", "numpy.maximum", "np.minimum", "numpy.minimum", "max", "min") and len(node.args) == 2 \
             and not node.keywords and sum(isinstance(_bare(a), ast.Constant) for a in node.args) == 1:
         yield "unwrap", "clamped", ""   # a value clamped to a bound where it belongs whole: `f * b / np.maximum(d, 1.0)`
+    if isinstance(node.func, ast.Attribute) and node.func.attr == "squeeze" and not node.args and not node.keywords:
+        # every length-1 axis dropped, those the API keeps too (one distance, one point): the array as made
+        yield "unwrap", "method", ""
     if isinstance(node.func, ast.Attribute) and node.func.attr == "round" and dotted not in _ROUNDING \
             and dotted.split(".")[0] not in ("np", "numpy", "math") and (node.args or node.keywords):
         yield "unwrap", "method", ""   # `np.cos(t).round(2)` -> `np.cos(t)`

@@ -2327,6 +2327,13 @@ SEEN = 8                 # a function's calls kept from a grading's checks for c
 SEEN_CONFIRMATIONS = 3   # of which a repair is confirmed on at most this many
 
 
+def found_on_earlier_checks(trial, function: str) -> bool:
+    """Whether a change of ``function``'s code was confirmed on an earlier check of this grading: a check's own
+    guess at a cause (a rule read from the answers) then yields to it -- the change is tried on this check too."""
+    shared = getattr(getattr(trial, "sandbox", None), "shared", None)
+    return bool(shared is not None and shared.get("repair found", {}).get(function))
+
+
 def passing_functions(trial) -> set:
     """The graded functions every check of which, run so far in this grading, passed (one at least)."""
     shared = trial.sandbox.shared
