@@ -877,4 +877,15 @@ MISTAKES = {
             M = np.array([[1.0, 0.0, tx], [0.0, 1.0, ty]])
             return cv2.warpAffine(image, M, (width, height))
         """, ["a negative slice bound counts from the end of the axis"]),
+
+    # (blind set 2026-12-06d)
+    "np.diag given a dtype it does not take": ("lab07.ex3", reference_def_with(
+        "lab07_transformations", "scaling_matrix", "return np.diag([float(sx), float(sy), 1.0])",
+        "return np.diag([sx, sy, 1.0], dtype=np.float64)"), ["calls `np.diag` with `dtype=`", "(its parameters: v, k)"]),
+    "warp_affine's size picked by a conditional that a comma takes into a tuple": ("lab07.ex5", """
+        def warp_affine(image, A, dsize=None):
+            height, width = image.shape[:2]
+            size = dsize if dsize is not None else width, height
+            return cv2.warpAffine(image, np.asarray(A, np.float64), size)
+        """, ["a comma binds looser than `if ... else`", "dsize if dsize is not none else (width, height)"]),
 }

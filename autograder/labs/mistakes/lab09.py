@@ -1045,6 +1045,16 @@ MISTAKES = {
             uv[w <= 0] = np.nan
             return uv[0] if single else uv
         """, ["changing `x = x / x[-1]` to `x = x / x[:, -1:]`"]),
+
+    # (blind set 2026-12-06d)
+    "pinhole projections returned as the pair x, y (the sheet's (x, y))": ("lab09.ex1", """
+        def pinhole_project(points, f):
+            X, single = _points(points)
+            x, y = f * X[:, 0] / X[:, 2], f * X[:, 1] / X[:, 2]
+            if single:
+                return np.array([x[0], y[0]])
+            return x, y
+        """, ["a tuple of 2 arrays of shape", "one per column", "np.column_stack"]),
 }
 
 

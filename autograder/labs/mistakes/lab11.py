@@ -1019,4 +1019,11 @@ MISTAKES = {
                     cv2.line(out, p, q, 255, 1)
             return out
         """, ["takes `c` as its own variable", "value is never read -- one name for two values"]),
+
+    # (blind set 2026-12-06d)
+    "essential_from_fundamental's return ending in a comma (a tuple of one)": ("lab11.ex3", reference_def_with(
+        "lab11_two_view", "essential_from_fundamental",
+        "return np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K1, np.float64)",
+        "return np.asarray(K2, np.float64).T @ np.asarray(F, np.float64) @ np.asarray(K1, np.float64),"),
+        ["a tuple holding one array of shape (3, 3)"]),
 }
