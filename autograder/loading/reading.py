@@ -2648,17 +2648,23 @@ def _looped_sources(iterated, position: int, count: int) -> list[str]:
     return []
 
 
-def _loop_variable_rebinds(name, function) -> list[Finding]:
-    """``for world in np.atleast_2d(world):`` then ``world.ndim`` after the loop: the loop rebinds a
-    name already bound (a parameter, or assigned above the loop), and a line after the loop reads it
-    before binding it again -- it reads the loop's last item, not what the name held before. (Each
-    name's places are gathered once and searched by bisection: linear in the function's size.)"""
-    places: dict[str, list] = {}   # name -> sorted [(line, column, read)]
+def _name_places(function) -> dict[str, list]:
+    """Each name of the def -> its places, sorted: ``[(line, column, read)]`` (gathered once, searched by bisection)."""
+    places: dict[str, list] = {}
     for node in _nodes(function):
         if isinstance(node, ast.Name):
             places.setdefault(node.id, []).append((node.lineno, node.col_offset, isinstance(node.ctx, ast.Load)))
     for found in places.values():
         found.sort()
+    return places
+
+
+def _loop_variable_rebinds(name, function) -> list[Finding]:
+    """``for world in np.atleast_2d(world):`` then ``world.ndim`` after the loop: the loop rebinds a
+    name already bound (a parameter, or assigned above the loop), and a line after the loop reads it
+    before binding it again -- it reads the loop's last item, not what the name held before. (Each
+    name's places are gathered once and searched by bisection: linear in the function's size.)"""
+    places = _name_places(function)
     parameters = {a.arg for a in function.args.args + function.args.kwonlyargs}
     for loop in _nodes(function):
         if not isinstance(loop, ast.For):
@@ -2685,12 +2691,7 @@ def _loop_variable_hides_a_value(name, function) -> list[Finding]:
     loop gets the loop's items and the value assigned is never read (one name for two values). A constant
     assigned first (``i = 0``) is an initialisation, not a value meant. (Each name's places are gathered once and
     searched by bisection: linear in the function's size.)"""
-    places: dict[str, list] = {}   # name -> sorted [(line, column, read)]
-    for node in _nodes(function):
-        if isinstance(node, ast.Name):
-            places.setdefault(node.id, []).append((node.lineno, node.col_offset, isinstance(node.ctx, ast.Load)))
-    for found in places.values():
-        found.sort()
+    places = _name_places(function)
     assigned = {(target.id, statement.lineno): statement for statement in _nodes(function)
                 if isinstance(statement, ast.Assign)
                 for target in ast.walk(ast.Tuple(elts=statement.targets)) if isinstance(target, ast.Name)}
