@@ -972,12 +972,19 @@ def call_rectify(t: Trial, pair):
 # Measured: H1 and H2 orthonormal with determinant 1. A pixel map K_new R K^-1 never is (K's focal length and
 # principal point are in pixels), so both so are rotations returned where the pixel maps belong.
 ROTATIONS_RETURNED = "the rectifying rotations are returned as H1 and H2, where the pixel maps K_new R_rect K^-1 belong"
+IDENTITY_RETURNED = "a pair taken for rectified already: H1 and H2 the identity"
 
 
 def name_rotations(t: Trial, H1, H2, what="rectify"):
     """Fail naming :data:`ROTATIONS_RETURNED` when both maps returned are rotation matrices."""
     def rotation(H) -> bool:
         return bool(np.allclose(H @ H.T, np.eye(3), atol=1e-6) and abs(np.linalg.det(H) - 1) <= 1e-6)
+    if all(np.allclose(H / H[2, 2], np.eye(3), atol=1e-9) for H in (H1, H2) if H[2, 2] != 0) and H1[2, 2] and H2[2, 2]:
+        # (the identity is a rotation too: both maps the identity leave the images as they were -- a pair taken
+        # for rectified already, where the two cameras' K differ)
+        t.fail(measured(f"{what}: H1 and H2 are both the identity: the images are left as they are, yet the "
+                        "matches are not on the same rows -- a pair is rectified only when both views share one "
+                        "camera matrix and one orientation, and these two cameras' K differ"), mistake=IDENTITY_RETURNED)
     if rotation(H1) and rotation(H2):
         t.fail(f"{what}: H1 and H2 are rotation matrices (orthonormal, determinant 1), not pixel-to-pixel maps: "
                f"it looks like {ROTATIONS_RETURNED} (a rotation moves rays, and the pixels are "
@@ -1333,6 +1340,10 @@ def rectify_property(t):
 
     t.for_all(st.integers(0, 2**32 - 1), holds, max_examples=4,
               describe=lambda s: f"fixtures.lab12.unrectified_pair(seed={s})")
+    # (a rig not turned, camera 2 straight to the right, is not rectified while the two cameras' K differ)
+    pair = truth.unrectified_pair(seed=5, parallel=True)
+    _, _, H1, H2 = call_rectify(t, pair)
+    judge_rows(t, pair, H1, H2, what="a rig not turned (R = I, T along x) whose two cameras' K differ")
 
 
 def warped_error(image, H, got) -> float:

@@ -1384,6 +1384,12 @@ MISTAKES = {
                 disparity[y] = path
             return disparity
         """, ["the last row is never computed"]),
+
+    "a rig not turned taken for rectified already (identity maps where the cameras' K differ)": ("lab12.ex3",
+        reference_def_with("lab12_stereo", "rectify", "height, width = np.asarray(img_l).shape[:2]",
+                           "height, width = np.asarray(img_l).shape[:2]\nif np.allclose(R, np.eye(3)) and "
+                           "np.allclose(T[1:], 0.0):\n    return np.asarray(img_l).copy(), np.asarray(img_r).copy(), "
+                           "np.eye(3), np.eye(3)"), ["h1 and h2 are both the identity", "these two cameras' k differ"]),
 }
 
 
