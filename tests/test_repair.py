@@ -5531,3 +5531,18 @@ def test_a_squeeze_is_offered_its_array_as_made():
     changes = [m for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
                if m.operator == "unwrap" and m.edits[0][3] == "method"]
     assert changes
+
+
+def test_a_calibration_option_is_offered_its_removal_not_another_option():
+    """`flags=cv2.CALIB_FIX_PRINCIPAL_POINT` (the blind set 1206d's 09/06): calibrateCamera's CALIB_ options are
+    independent restrictions -- taken out, not swapped for another (CALIB_ZERO_TANGENT_DIST mends only where the
+    lens has no tangential distortion)."""
+    source = textwrap.dedent("""
+        import cv2
+
+        def graded(obj, img, size):
+            return cv2.calibrateCamera(obj, img, size, None, None, flags=cv2.CALIB_FIX_PRINCIPAL_POINT)
+    """)
+    changes = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
+    assert ("drop_keyword", "flags") in changes
+    assert not any(operator == "flag" and str(payload).startswith("CALIB_") for operator, payload in changes)

@@ -267,7 +267,8 @@ _FLAG_FAMILIES = [
     ("CV_32F", "CV_64F", "CV_8U"),
     ("THRESH_BINARY", "THRESH_BINARY_INV"),
     ("SOLVEPNP_ITERATIVE", "SOLVEPNP_EPNP", "SOLVEPNP_SQPNP"),
-    ("CALIB_FIX_PRINCIPAL_POINT", "CALIB_ZERO_TANGENT_DIST", "CALIB_FIX_ASPECT_RATIO"),
+    # (calibrateCamera's CALIB_ options are independent restrictions, not alternatives of one choice: one given
+    # where none belongs is taken out -- drop_keyword --, never swapped for another that mends by the scene's luck)
     ("DECOMP_LU", "DECOMP_SVD", "DECOMP_NORMAL", "DECOMP_QR", "DECOMP_CHOLESKY", "DECOMP_EIG"),
     ("STEREO_SGBM_MODE_SGBM", "STEREO_SGBM_MODE_HH", "STEREO_SGBM_MODE_SGBM_3WAY"),
     ("CALIB_ZERO_DISPARITY", "CALIB_USE_INTRINSIC_GUESS", "CALIB_FIX_INTRINSIC"),
