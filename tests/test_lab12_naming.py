@@ -288,8 +288,12 @@ def test_a_dp_that_cannot_jump_far_is_told_so_at_a_deep_edge(tmp_path, edit):
 
     result = grade(edited_reference(tmp_path, MODULE, edit), ["lab12.ex5"], pictures="none", include_hidden=False)
     edge = next(c for c in check_results(result, "lab12.ex5") if c.name.startswith("dp_stereo crosses a deep"))
-    assert edge.score == 0 and edge.mistake == lab12.JUMPS_LIMITED, edge.message
-    assert "with smoothness=0.0001" in edge.message
+    assert edge.score == 0, edge.message
+    # (named by the measurement; or, where a change of the code was confirmed on an earlier check, by that
+    # change -- the restriction itself taken out -- which the rule's guess then yields to)
+    restrictions = ("np.where(near", "best[:, 1:]", "best[:, :-1]", "best = previous")
+    assert (edge.mistake == lab12.JUMPS_LIMITED and "with smoothness=0.0001" in edge.message) or (
+        edge.mistake.startswith("repair:") and any(text in edge.message for text in restrictions)), edge.message
 
 
 def test_a_dp_whose_default_penalty_is_too_strong_for_a_deep_edge_is_not_told_its_jumps_are_limited(tmp_path):
