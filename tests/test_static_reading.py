@@ -1914,3 +1914,12 @@ def test_a_conditional_taken_into_a_tuple_is_read():
     for meant in ("dsize if dsize is not None else (width, height)", "(dsize if dsize is not None else width), height"):
         assert "a conditional expression taken into a tuple (the comma binds looser)" not in one(
             source.replace("dsize if dsize is not None else width, height", meant))
+
+
+def test_a_pair_returned_or_unpacked_beside_a_conditional_is_meant():
+    """`return H if ok else None, mask` and `H, mask = ...`: a pair is meant, not read as a conditional taken in."""
+    for line in ("return H if ok else None, mask", "H, m = H if ok else None, mask\n            return H, m"):
+        assert "a conditional expression taken into a tuple (the comma binds looser)" not in one(f"""
+        def f(H, ok, mask):
+            {line}
+        """)

@@ -849,8 +849,8 @@ def _arrays_held(value, shape) -> str:
         return ""
     kind, inner = type(value).__name__, items[0].shape
     if len(items) == 1 and len(inner) == len(shape):
-        return measured(f"a {kind} holding one array of shape {inner}, not the array itself (a comma after the "
-                        f"returned value makes a tuple of one)")
+        return measured(f"a {kind} holding one array of shape {inner}, not the array itself"
+                        + (" (a comma after the returned value makes a tuple of one)" if kind == "tuple" else ""))
     if len(inner) == 1 and len(shape) == 2 and shape[1] == len(items):
         return measured(f"a {kind} of {len(items)} arrays of shape {inner}, one per column, where one array of "
                         f"shape {_shape_text(shape)} is asked: stack them as its columns (np.column_stack)")

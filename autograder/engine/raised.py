@@ -316,6 +316,7 @@ def _item_wrapped(fn, line: int, kind: str, attribute: str) -> Form | None:
     answered so by a matcher (``knnMatch`` gives each query a sequence of its k nearest matches)."""
     read = {node.value.id for node in _own_nodes(fn) if isinstance(node, ast.Attribute) and node.attr == attribute
             and isinstance(node.value, ast.Name) and node.lineno == line}
+    tried = set()   # (each sequence looped over is read once, however many loops take it)
     for loop in _own_nodes(fn):
         if not isinstance(loop, (ast.For, ast.comprehension)) or not (loop.lineno if isinstance(loop, ast.For)
                                                                        else loop.target.lineno) <= line:
@@ -326,6 +327,9 @@ def _item_wrapped(fn, line: int, kind: str, attribute: str) -> Form | None:
             continue
         looped = loop.iter.args[0] if isinstance(loop.iter, ast.Call) and _path(loop.iter.func) == "enumerate" \
             and loop.iter.args else loop.iter
+        if ast.dump(looped) in tried:
+            continue
+        tried.add(ast.dump(looped))
         said = _wrapped_items(fn, looped, line)
         if said:
             return Form(measured(f"`{target.id}.{attribute}` (line {line}) reads a {kind}: {said}, so "

@@ -975,16 +975,27 @@ ROTATIONS_RETURNED = "the rectifying rotations are returned as H1 and H2, where 
 IDENTITY_RETURNED = "a pair taken for rectified already: H1 and H2 the identity"
 
 
+def identity(H) -> bool:
+    """Whether ``H`` is the identity up to its scale."""
+    H = np.asarray(H, np.float64)
+    return H.shape == (3, 3) and bool(H[2, 2] != 0) and bool(np.allclose(H / H[2, 2], np.eye(3), atol=1e-9))
+
+
+def name_identity(t: Trial, pair, H1, H2, what="rectify"):
+    """Fail naming :data:`IDENTITY_RETURNED` when both maps are the identity for a pair whose cameras' K differ
+    (the rows were found not to agree): the images left as they are, as if rectified already."""
+    if identity(H1) and identity(H2) and not np.allclose(pair.K1, pair.K2):
+        t.fail(measured(f"{what}: H1 and H2 are both the identity: the images are left as they are, yet the "
+                        "matches are not on the same rows -- a pair is rectified only when both views share one "
+                        "camera matrix and one orientation, and these two cameras' K differ"), mistake=IDENTITY_RETURNED)
+
+
 def name_rotations(t: Trial, H1, H2, what="rectify"):
     """Fail naming :data:`ROTATIONS_RETURNED` when both maps returned are rotation matrices."""
     def rotation(H) -> bool:
         return bool(np.allclose(H @ H.T, np.eye(3), atol=1e-6) and abs(np.linalg.det(H) - 1) <= 1e-6)
-    if all(np.allclose(H / H[2, 2], np.eye(3), atol=1e-9) for H in (H1, H2) if H[2, 2] != 0) and H1[2, 2] and H2[2, 2]:
-        # (the identity is a rotation too: both maps the identity leave the images as they were -- a pair taken
-        # for rectified already, where the two cameras' K differ)
-        t.fail(measured(f"{what}: H1 and H2 are both the identity: the images are left as they are, yet the "
-                        "matches are not on the same rows -- a pair is rectified only when both views share one "
-                        "camera matrix and one orientation, and these two cameras' K differ"), mistake=IDENTITY_RETURNED)
+    if identity(H1) and identity(H2):
+        return   # (the identity is a rotation too, but says nothing of rotations returned: see name_identity)
     if rotation(H1) and rotation(H2):
         t.fail(f"{what}: H1 and H2 are rotation matrices (orthonormal, determinant 1), not pixel-to-pixel maps: "
                f"it looks like {ROTATIONS_RETURNED} (a rotation moves rays, and the pixels are "
@@ -1159,6 +1170,7 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
                    f"{'mirrored' if x1 else 'not mirrored'}, {'upside down' if y1 else 'upright'}; right: "
                    f"{'mirrored' if x2 else 'not mirrored'}, {'upside down' if y2 else 'upright'}).")
         return worst, float(np.median(dx))
+    name_identity(t, pair, H1, H2, what)
     name_rotations(t, H1, H2, what)
     name_pose_mistake(t, pair, what)
     # Undoing a mistake of the construction must rectify exactly (the rows agree to rounding

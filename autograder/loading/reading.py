@@ -1321,9 +1321,12 @@ def _third_operand_as_out(name, function) -> list[Finding]:
 def _conditional_in_a_tuple(name, function) -> list[Finding]:
     """``size = dsize if dsize is not None else width, height``: the comma binds looser than ``if ... else``,
     so the value is the pair (the conditional, ``height``), not the conditional between ``dsize`` and the pair.
-    A conditional in brackets (``(a if c else b), d``: the tuple starts before it) is meant as written."""
+    A conditional in brackets (``(a if c else b), d``: the tuple starts before it), or a tuple returned or unpacked
+    (a pair meant), is not read as one."""
     for node in _nodes(function):
-        if isinstance(node, (ast.Assign, ast.Return)) and isinstance(node.value, ast.Tuple) and node.value.elts \
+        # (one name given the tuple: `return H if ok else None, mask` and `H, mask = ...` mean the pair)
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and isinstance(node.value, ast.Tuple) and node.value.elts \
                 and isinstance(node.value.elts[0], ast.IfExp) and len(node.value.elts) >= 2 \
                 and (node.value.lineno, node.value.col_offset) == (node.value.elts[0].lineno,
                                                                     node.value.elts[0].col_offset):

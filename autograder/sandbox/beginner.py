@@ -251,7 +251,9 @@ def _wrong_image(function, message, arguments, values) -> str:
             if str(image.dtype) != "uint8" or image.ndim != 2:
                 # (each conversion only where it is needed: an (H, W) array is grey already -- a mask made
                 # float by np.zeros needs only its dtype)
-                steps = (["cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)"] if image.ndim == 3 else []) + (
+                colour = image.ndim == 3 and image.shape[2] in (3, 4)   # ((H, W, 1): its one channel, x[..., 0])
+                steps = (["cv2.cvtColor(image, cv2.COLOR_BGR2GRAY)"] if colour else ["x[..., 0]"] if image.ndim == 3
+                         else []) + (
                     ["np.clip(x, 0, 255).astype(np.uint8)" if str(image.dtype) != "bool" else "x.astype(np.uint8)"]
                     if str(image.dtype) != "uint8" else [])
                 return (f"{function} needs {name} as a grey uint8 image (H, W); yours is {_shown(image)}: "
