@@ -369,6 +369,25 @@ def test_two_entries_of_a_sequence_written_in_each_others_place():
     assert "swap_items" not in {m.operator for m in repair.mutants_of(source, {"graded"})["graded"]}
 
 
+def test_three_channels_merged_in_reversed_order_are_given_back_in_order():
+    """`r, g, b = cv2.split(image)` then `cv2.merge([f(b), f(g), f(r)])` (blind set 2026-12-06d): the outer
+    two of three merged channels are exchanged (the B, G, R order reversed), once, as `stack_order`."""
+    source = textwrap.dedent("""
+        import cv2
+
+        def graded(image):
+            r, g, b = cv2.split(image)
+            return cv2.merge([b + 1, g + 1, r + 1])
+    """)
+    fn = ast.parse(source).body[1]
+    changed = [(m.operator, repair.ast.unparse(repair._MAKE[m.operator](node, m.edits[0][3])))
+               for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+               if m.operator in ("stack_order", "swap_items")
+               for node in [list(ast.walk(fn))[m.edits[0][1]]] if isinstance(node, ast.Call)]
+    assert ("stack_order", "cv2.merge([r + 1, g + 1, b + 1])") in changed
+    assert [text for _, text in changed].count("cv2.merge([r + 1, g + 1, b + 1])") == 1
+
+
 def test_a_step_done_to_one_input_only_and_an_argument_another_call_is_given():
     """`xl = xl[:, 0]` with no `xr = xr[:, 0]`: the two done together; `warp(weight, H)` beside
     `warp(image, shift @ H)`: the other call's argument. Student-only, never a step already done."""

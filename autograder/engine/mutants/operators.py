@@ -561,9 +561,10 @@ def _reciprocal_of(node):
 
 
 def _make_stack_order(node, payload):
-    new = copy.deepcopy(node)   # np.hstack([a, b, c]) -> np.hstack([b, a, c])
+    new = copy.deepcopy(node)   # np.hstack([a, b, c]) -> np.hstack([b, a, c]); (0, 2): cv2.merge([c, b, a])
+    i, j = payload if isinstance(payload, tuple) else (payload, payload + 1)
     items = new.args[0].elts
-    items[payload], items[payload + 1] = items[payload + 1], items[payload]
+    items[i], items[j] = items[j], items[i]
     return new
 
 
@@ -6389,7 +6390,8 @@ def _item_swaps(node, parent):
     items = node.elts
     if not 2 <= len(items) <= 9 or any(isinstance(item, ast.Starred) for item in items) \
             or (isinstance(parent, ast.Call) and node in parent.args
-                and _dotted(parent.func).rsplit(".", 1)[-1] in _STACKING):
+                and (_dotted(parent.func).rsplit(".", 1)[-1] in _STACKING
+                     or _dotted(parent.func) == "cv2.merge" and len(items) == 3)):
         return
     pairs = itertools.combinations(range(len(items)), 2) if len(items) <= 4 else \
         ((i, i + 1) for i in range(len(items) - 1))
@@ -6583,12 +6585,18 @@ _STACKING = ("hstack", "vstack", "concatenate", "column_stack", "stack", "dstack
 
 
 def _stack_changes(node: ast.Call, what):
-    """Two neighbouring pieces of ``np.hstack([...])`` (``vstack``, ``concatenate``, ...) exchanged."""
+    """Two neighbouring pieces of ``np.hstack([...])`` (``vstack``, ``concatenate``, ...) exchanged, and
+    the outer two of three channels given to ``cv2.merge`` or ``np.dstack`` (the B, G, R order reversed)."""
     dotted = _dotted(node.func)
-    if not (dotted.startswith(("np.", "numpy.")) and dotted.rsplit(".", 1)[-1] in _STACKING) or not node.args \
+    stacking = dotted.startswith(("np.", "numpy.")) and dotted.rsplit(".", 1)[-1] in _STACKING
+    if not (stacking or dotted == "cv2.merge") or not node.args \
             or not isinstance(node.args[0], (ast.List, ast.Tuple)) or len(node.args[0].elts) < 2:
         return
     items = node.args[0].elts
+    if len(items) == 3 and dotted.endswith(("merge", "dstack")) and not any(isinstance(e, ast.Starred) for e in items):
+        a, b = what(items[0]), what(items[2])
+        if a and b and len(a + b) <= 90:
+            yield "stack_order", (0, 2), f"the channels {a} and {b} are given in the other order (B, G, R reversed)"
     for i in range(min(len(items), 9) - 1):
         if any(isinstance(e, ast.Starred) for e in items[i:i + 2]):
             continue
