@@ -130,6 +130,34 @@ def test_operands_meant_axis_by_axis_from_the_first_are_told_the_axes_to_add():
     assert "`fs[:, None][..., None]`" in sentence, sentence
 
 
+def test_an_axis_given_before_an_opencv_call_that_drops_it_is_told_there_not_at_the_use():
+    """`m = m[..., None]`, then a pyramid of m by cv2.pyrDown (blind set 2026-12-06d): OpenCV returns the
+    one-channel levels as (rows, cols), so the axis is gone at the use; adding it there would break the
+    first level, which kept it. Told at the line that gives the axis and the call that drops it."""
+    source = """
+        def blend(a, b, m, levels):
+            m = m[..., None]
+            ga, gm = [a], [m]
+            for _ in range(levels - 1):
+                ga.append(cv2.pyrDown(ga[-1]))
+                gm.append(cv2.pyrDown(gm[-1]))
+            out = []
+            for i in range(levels):
+                w = gm[i]
+                out.append(w * ga[i] + (1 - w) * 0.5)
+            return out
+        """
+    sentence = raised_sentence(source, "blend", np.ones((16, 20, 3), np.float32), None,
+                               np.ones((16, 20), np.float32), 3)
+    assert "in `w * ga[i]` (line 11), `w` has shape (8, 10) and `ga[i]` (8, 10, 3)" in sentence, sentence
+    assert "Line 3 gives an array an axis of size 1 (`m[..., None]`), but `cv2.pyrDown` (line 7)" in sentence, sentence
+    assert "[..., None]` gives it one" not in sentence
+    # (an axis never given: the advice to give it at the use stands)
+    plain = raised_sentence(source.replace("m = m[..., None]", "m = m * 1.0"), "blend",
+                            np.ones((16, 20, 3), np.float32), None, np.ones((16, 20), np.float32), 3)
+    assert "`w[..., None]` gives it one" in plain and "OpenCV drops it" not in plain, plain
+
+
 def test_a_pyramid_level_brought_up_without_its_size_is_told_dstsize():
     """`cv2.pyrUp(result) + band` with an odd side below: pyrUp doubles it, one pixel too many."""
     sentence = raised_sentence("""

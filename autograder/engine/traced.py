@@ -460,7 +460,8 @@ def _broadcast_named(recording, expressions, shapes, where, fn=None, line: int =
             continue
         (a, sa), (b, sb) = arrays[:2]
         said = f"in {_quote(node)} {where}, {_quote(a)} has shape {_shape_text(sa)} and {_quote(b)} {_shape_text(sb)}"
-        why = _channels_stacked(fn, line, a, sa, b, sb) if fn is not None else ""
+        why = (_channels_stacked(fn, line, a, sa, b, sb) or _axis_lost_in_opencv(fn, line, a, sa, b, sb)) \
+            if fn is not None else ""
         return Form(said + (why or _why_not_broadcast(a, sa, b, sb)) + _pyramid_sizes(a, sa, b, sb), MISTAKE)
     return None
 
@@ -491,6 +492,67 @@ def _channels_stacked(fn, line: int, a, sa, b, sb) -> str:
                          f"{_quote(short)} has no such axis; make them only where {_quote(short)} has channels "
                          "(a colour image)")
     return ""
+
+
+def _axis_lost_in_opencv(fn, line: int, a, sa, b, sb) -> str:
+    """Where the operand short of the other's last axis was made, through the function's assignments
+    (and the lists it appends to), from an array given an axis of size 1 (`m[..., None]`) and later
+    passed through an OpenCV call: OpenCV returns a one-channel image as (rows, cols), so the axis
+    given before the call is gone after it -- the advice to add it at the use would then break the
+    levels that kept it."""
+    for short, ss, long_, sl in ((a, sa, b, sb), (b, sb, a, sa)):
+        if not (isinstance(short, ast.Name) and len(sl) == len(ss) + 1 and tuple(sl[:-1]) == tuple(ss)):
+            continue
+        made = _made_of(fn, short.id, line)
+        added = [(n.lineno, n) for n in made if _axis_added(n)]
+        calls = [(n.lineno, n) for n in made if isinstance(n, ast.Call) and _called_name(n) != ""
+                 and ast.unparse(n.func).startswith("cv2.")]
+        later = [(at, call) for at, call in calls if added and at > min(at_ for at_, _ in added)]
+        if not later:
+            continue
+        (at_axis, axis), (at_call, call) = min(added, key=lambda x: x[0]), min(later, key=lambda x: x[0])
+        return from_code(f": NumPy lines shapes up from their last axes, so {_quote(short)} has no axis for the "
+                         f"last axis of {_quote(long_)}. Line {at_axis} gives an array an axis of size 1 "
+                         f"({_quote(axis)}), but `{ast.unparse(call.func)}` (line {at_call}) returns a one-channel "
+                         "image as (rows, cols), without that axis (OpenCV drops it): give the axis after the "
+                         "OpenCV calls, where the arrays are combined")
+    return ""
+
+
+def _axis_added(node) -> bool:
+    """`x[..., None]`, `x[:, :, np.newaxis]`, `np.expand_dims(x, ...)`: an axis of size 1 given to an array."""
+    if isinstance(node, ast.Subscript):
+        parts = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+        return any(isinstance(p, ast.Constant) and p.value is None or ast.unparse(p) in ("np.newaxis", "numpy.newaxis")
+                   for p in parts)
+    return isinstance(node, ast.Call) and ast.unparse(node.func) in ("np.expand_dims", "numpy.expand_dims")
+
+
+def _made_of(fn, name: str, line: int, depth: int = 5) -> list[ast.AST]:
+    """The expressions ``name`` was made from before ``line``: the values assigned to it, appended or
+    added to it, and, in turn, to the names those values read (``depth`` steps back, in ``fn``)."""
+    statements = [n for n in _own_nodes(fn) if getattr(n, "lineno", line) < line]
+    found, names, frontier = [], {name}, [name]
+    for _ in range(depth):
+        values = []
+        for statement in statements:
+            if isinstance(statement, ast.Assign):
+                values += [v for t in statement.targets for n in frontier
+                           for v in [_element_for(t, statement.value, n)] if v is not None]
+            elif isinstance(statement, ast.AugAssign) and isinstance(statement.target, ast.Name) \
+                    and statement.target.id in frontier:
+                values.append(statement.value)
+            elif isinstance(statement, ast.Call) and isinstance(statement.func, ast.Attribute) \
+                    and statement.func.attr in ("append", "extend", "insert") \
+                    and isinstance(statement.func.value, ast.Name) and statement.func.value.id in frontier:
+                values += statement.args
+        nodes = [n for v in values for n in ast.walk(v)]
+        found += nodes
+        frontier = sorted({n.id for n in nodes if isinstance(n, ast.Name)} - names - {"np", "numpy", "cv2"})
+        names.update(frontier)
+        if not frontier or len(found) > 2000:
+            break
+    return found
 
 
 def _pyramid_sizes(a, sa, b, sb) -> str:
