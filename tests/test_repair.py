@@ -388,6 +388,26 @@ def test_three_channels_merged_in_reversed_order_are_given_back_in_order():
     assert [text for _, text in changed].count("cv2.merge([r + 1, g + 1, b + 1])") == 1
 
 
+def test_einsum_subscripts_a_student_gets_wrong_are_offered_right():
+    """`np.einsum('ni,nj->ij', ...)` sums the point index the rows keep (blind set 2026-12-06d); an answer's
+    axes in another order and an operand used transposed are the neighbours of that slip. Implicit
+    subscripts and ellipses are left alone."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(x1, x2, M):
+            A = np.einsum('ni,nj->ij', x2, x1)
+            B = np.einsum('ij,nj->ni', M, x1)
+            return A, B, np.einsum('ij,jk', M, M), np.einsum('...i,...i->...', x1, x1)
+    """)
+    written = {m.edits[0][3] for m in repair.mutants_of(source, {"graded"})["graded"] if m.operator == "einsum"}
+    assert {"'ni,nj->nij'", "'ni,nj->ijn'", "'ni,nj->ji'", "'in,nj->ij'"} <= written, written
+    assert {"'ij,nj->in'", "'ji,nj->ni'", "'ij,jn->ni'"} <= written, written
+    assert not any("..." in w or w.startswith("'ij,jk") for w in written), written
+    fixed = [m for m in repair.mutants_of(source, {"graded"})["graded"] if m.edits[0][3] == "'ni,nj->nij'"]
+    assert "the index n is summed over" in fixed[0].sentence, fixed[0]
+
+
 def test_a_step_done_to_one_input_only_and_an_argument_another_call_is_given():
     """`xl = xl[:, 0]` with no `xr = xr[:, 0]`: the two done together; `warp(weight, H)` beside
     `warp(image, shift @ H)`: the other call's argument. Student-only, never a step already done."""

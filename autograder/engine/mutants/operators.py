@@ -138,6 +138,7 @@ OPERATORS = {
     "colour_axis": ("channel", "grey", "gray", "axis"),
     "drop_w": ("homogeneous", "(n, 3)", "(n, 2)", "column"),
     "power_xor": ("power", "square", "xor", "^"),   # r ^ 2 (a bitwise XOR in Python) -> r ** 2
+    "einsum": ("einsum", "index", "summed", "axes", "transpos"),   # 'ni,nj->ij' -> 'ni,nj->nij'
     "identity": ("identity", "eye", "diagonal", "1 -"),   # (1 - R) @ c -> (np.eye(len(R)) - R) @ c
     "half_pixel": ("half", "0.5", "pixel", "offset", "centre"),   # (x + 0.5) -> x: a half-pixel convention   # f(x1, x2), x1 homogeneous -> f(x1[:, :2], x2)   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
@@ -1847,7 +1848,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
+_MAKE = {**{name: _make_written for name in ("einsum", "per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
                                               "unused_name", "twin_test", "drop_epsilon", "twin_values",
                                               "chosen_value", "add_stacked", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
@@ -2795,6 +2796,9 @@ def _changes(node, parents, words: _Words, line):
         yield from _index_changes(node, what)
     if isinstance(node, ast.Call):
         yield from _stack_changes(node, what)
+    if isinstance(node, ast.Constant) and isinstance(parent, ast.Call) and parent.args and parent.args[0] is node \
+            and _dotted(parent.func) in ("np.einsum", "numpy.einsum"):
+        yield from _einsum_changes(node.value)
     if words.student and isinstance(parent, (ast.IfExp, ast.If, ast.While)) and parent.test is node:
         # a parameter whose default is None tested for truth (`... if dist else None`): an array given
         # has no truth value (ValueError), a list of zeros is taken as not given
@@ -6606,6 +6610,38 @@ def _stack_changes(node: ast.Call, what):
         else:   # (a design matrix's row: its entries by position, the way the lab sheet writes them)
             yield "stack_order", i, f"the {_ORDINALS[i]} and {_ORDINALS[i + 1]} pieces stacked by `{dotted}` " \
                                     "are exchanged"
+
+
+def _einsum_changes(spec):
+    """Subscripts of ``np.einsum`` a student gets wrong: an index summed over that the answer keeps
+    (``'ni,nj->ij'`` for the rows ``'ni,nj->nij'``), the answer's axes in another order, one operand's
+    two indices reversed (the operand transposed). Explicit subscripts only (``->``, no ``...``)."""
+    if not isinstance(spec, str) or "->" not in spec or "." in spec or not spec.replace(" ", ""):
+        return
+    spec = spec.replace(" ", "")
+    inputs, out = spec.split("->")
+    terms = inputs.split(",")
+    if not all(t.isalpha() for t in terms) or (out and not out.isalpha()) or len(set(out)) != len(out):
+        return
+    summed = sorted({c for t in terms for c in t} - set(out), key=inputs.index)
+    changes = []
+    for c in summed:
+        changes += [(f"{c}{out}", f"the index {c} is summed over, where the answer keeps it as its first axis"),
+                    (f"{out}{c}", f"the index {c} is summed over, where the answer keeps it as its last axis")]
+    for i, j in itertools.combinations(range(len(out)), 2):
+        swapped = list(out)
+        swapped[i], swapped[j] = swapped[j], swapped[i]
+        changes.append(("".join(swapped), f"the answer's axes {out[i]} and {out[j]} are in the other order"))
+    for k, term in enumerate(terms):
+        if len(term) == 2 and term[0] != term[1]:
+            others = terms[:k] + [term[::-1]] + terms[k + 1:]
+            changes.append((None, f"the {_ORDINALS[k]} operand's indices are reversed (it is used transposed)",
+                            ",".join(others)))
+    for change in changes:
+        new_inputs = change[2] if len(change) == 3 else inputs
+        new_out = change[0] if change[0] is not None else out
+        yield "einsum", repr(f"{new_inputs}->{new_out}"), \
+            f"in `np.einsum`, {change[1]} ('{new_inputs}->{new_out}' for '{spec}')"
 
 
 def _in_place_changes(node, words: _Words):
