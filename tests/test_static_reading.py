@@ -1886,6 +1886,32 @@ def test_one_samples_pairs_drawn_by_two_random_draws_are_read():
         """)
 
 
+@pytest.mark.parametrize("reordered", [
+    "return np.unique(pts1, axis=0), np.unique(pts2, axis=0)",
+    "pts1 = np.unique(pts1, axis=0)\n            pts2 = np.unique(pts2, axis=0)\n            return pts1, pts2",
+    "src = src[np.argsort(src[:, 0])]\n            dst = dst[np.argsort(dst[:, 0])]\n            return src, dst",
+])
+def test_the_two_arrays_of_one_set_of_pairs_reordered_apart_are_read(reordered):
+    """`np.unique(pts1, axis=0), np.unique(pts2, axis=0)` (the blind set 1206d's 08/05): each array sorted and
+    thinned by its own values, so row k of one no longer pairs with row k of the other. Both reordered by one
+    index, or one array made unique on its own (its partner not reordered), is not read."""
+    mistake = "the two arrays of one set of pairs reordered apart"
+    assert mistake in one(f"""
+        def f(pts1, pts2, src, dst):
+            {reordered}
+        """)
+    assert mistake not in one("""
+        def f(pts1, pts2):
+            _, keep = np.unique(pts1, axis=0, return_index=True)
+            return pts1[keep], pts2[keep]
+        """)
+    assert mistake not in one("""
+        def f(pts1, pts2):
+            order = np.argsort(pts1[:, 0])
+            return pts1[order], pts2[order], np.unique(pts1, axis=0)
+        """)
+
+
 def test_a_mutable_default_written_into_is_read():
     """`def _condition(pts, T=np.eye(3)):` filling T in place (the blind set 1206d's 11/04): every call leaving T
     out shares one array. A default None, or a copy made first, is not read as one."""

@@ -266,6 +266,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _safely(_loop_variable_rebinds, name, function)
     found += _safely(_loop_variable_hides_a_value, name, function)
     found += _safely(_pairs_drawn_apart, name, function)
+    found += _safely(_pairs_reordered_apart, name, function)
     found += _safely(_mutable_default_written, name, function)
     found += _safely(_conditional_in_a_tuple, name, function)
     found += _safely(_loop_variable_assigned_in_vain, name, function)
@@ -1390,6 +1391,62 @@ def _pairs_drawn_apart(name, function) -> list[Finding]:
                                 f"separate random draws: the rows taken from `{a}` are not the partners of those "
                                 f"taken from `{b}` (row k of one pairs with row k of the other); draw the indices "
                                 f"once and take both with them", certain=True)]
+    return []
+
+
+def _reordering(value, array: str) -> str:
+    """How ``value`` reorders the rows of ``array`` on their own: ``np.unique(array, axis=0)`` (sorted,
+    repeats dropped), ``np.sort(array, axis=0)``, ``array[np.argsort(array[:, 0])]``; "" otherwise."""
+    mentions = lambda node: any(isinstance(n, ast.Name) and n.id == array for n in ast.walk(node))  # noqa: E731
+    if isinstance(value, ast.Call) and _call_name(value) in ("unique", "sort") and value.args and mentions(value.args[0]):
+        axis = [k.value for k in value.keywords if k.arg == "axis"]
+        if axis and isinstance(axis[0], ast.Constant) and axis[0].value == 0:
+            return "np.unique sorts the rows and drops repeats" if _call_name(value) == "unique" else \
+                "np.sort along axis 0 sorts each column on its own"
+    if isinstance(value, ast.Subscript) and isinstance(value.value, ast.Name) and value.value.id == array \
+            and isinstance(value.slice, ast.Call) and _call_name(value.slice) in ("argsort", "lexsort") \
+            and mentions(value.slice):
+        return f"`{_call_name(value.slice)}` of its own values orders its rows"
+    return ""
+
+
+def _first_name(node) -> str:
+    """The array a reordering call or index is given: ``pts1`` of ``np.unique(pts1, axis=0)``."""
+    inner = node.args[0] if isinstance(node, ast.Call) and node.args else \
+        node.value if isinstance(node, ast.Subscript) else None
+    return inner.id if isinstance(inner, ast.Name) else ""
+
+
+def _pairs_reordered_apart(name, function) -> list[Finding]:
+    """``pts1 = np.unique(pts1, axis=0)`` beside ``pts2 = np.unique(pts2, axis=0)``: the two arrays of one set
+    of pairs, each reordered (or thinned) by its own values -- row k of one is no longer the partner of row k
+    of the other. (One pass over the def's assignments.)"""
+    reordered = {}   # array -> (the expression reordering it, how)
+    for statement in _nodes(function):
+        if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
+                and isinstance(statement.targets[0], ast.Name):
+            made = [(statement.targets[0].id, statement.value)]
+        elif isinstance(statement, ast.Return) and isinstance(statement.value, ast.Tuple):   # (returned as made)
+            made = [(_first_name(item), item) for item in statement.value.elts]
+        else:
+            continue
+        for array, value in made:
+            how = _reordering(value, array) if array else ""
+            if how:
+                reordered.setdefault(array, (value, how))
+    arrays = sorted(reordered)
+    for i, a in enumerate(arrays):
+        for b in arrays[i + 1:]:
+            if _paired(a, b):
+                (first, how), (second, _) = sorted((reordered[a], reordered[b]),
+                                                   key=lambda x: (x[0].lineno, x[0].col_offset))
+                a, b = (a, b) if reordered[a][0] is first else (b, a)
+                where = f"line {_line(first)}" if _line(first) == _line(second) else \
+                    f"lines {_line(first)} and {_line(second)}"
+                return [Finding(name, _line(second), "the two arrays of one set of pairs reordered apart",
+                                f"{name} ({where}) reorders `{a}` and `{b}` each by "
+                                f"its own values ({how}): row k of `{a}` is no longer the partner of row k of "
+                                f"`{b}`; keep or reorder the pairs together, with one index for both", certain=True)]
     return []
 
 
