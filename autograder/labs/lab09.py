@@ -26,7 +26,8 @@ from ..engine.checks import Fail, StudentFailure, Trial, partial, passed
 from ..engine.claims import (THIRD_COORDINATE, checklist, divides_by, evidenced, from_code, guard, guessed, look_at,
                              measured, where_to_look)
 from ..engine.compare import at_precision, closest, format_apart, format_arrays_apart, magnitude, precision_floor
-from ..engine.hints import (Hint, Predicate, _resolved, _scope, call_in_a_loop, calls, code_of, expr, keyword, matmul_of, mentions,
+from ..engine.hints import (Hint, Predicate, _resolved, _scope, call_in_a_loop, calls, code_of, expr, functions_read, keyword,
+                            matmul_of, mentions,
                             nan_behind)
 from ..engine.hints import _path as _hints_path
 from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canvas, call_probe, confirm, fingerprint,
@@ -284,7 +285,7 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
     if explained and probe is not None:
         again = t.probe(probe.key, probe.answer)
         if again is not None and explain_coordinates(again, probe.expected, probe.formulas) == explained:
-            t.fail(f"{what} is wrong: {explained}.", mistake=explained)
+            t.fail(f"{what} is wrong: {explained}.{_skew_not_taken(t, explained)}", mistake=explained)
     if not np.isnan(expected).any() and np.isnan(got).any():
         t.fail(f"{what} returned NaN for points in front of the camera (Z > 0).")
     worst = _worst_point(got, expected)
@@ -292,6 +293,21 @@ def judge_points(t: Trial, what: str, got, expected, mistakes=None, tolerance=1e
     t.fail(f"{what} is off {where_points_wrong(got, expected, tolerance * scale)}, by up to "
            f"{format_apart(error, tolerance * scale, 4)}; for example point {worst} should be {wanted}, "
            f"yours is {shown}.")
+
+
+SKEW_TERM = " + s Y / Z"
+
+
+def _skew_not_taken(t: Trial, explained: str) -> str:
+    """Where x lacks only the skew term and the code projects with cv2.projectPoints: that call takes no
+    skew (its camera matrix is read for fx, fy, cx and cy; K[0, 1] never), so the term is lost there."""
+    computed, _, wanted = explained.partition("; it should be ")
+    if not (computed.startswith("x is computed as ") and wanted == computed[len("x is computed as "):] + SKEW_TERM):
+        return ""
+    if not calls("cv2.projectPoints").found(code_of(t).reachable(functions_read(t))):
+        return ""
+    return from_code(" Your code projects with cv2.projectPoints, which takes no skew: it reads fx, fy, cx and cy "
+                     "of the camera matrix, never K[0, 1]; add s Y / Z yourself, or project with K @ X.")
 
 
 def _worst_point(got, expected) -> int:

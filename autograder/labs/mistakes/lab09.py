@@ -1055,6 +1055,15 @@ MISTAKES = {
                 return np.array([x[0], y[0]])
             return x, y
         """, ["a tuple of 2 arrays of shape", "one per column", "np.column_stack"]),
+
+    # (blind set 2026-12-06e)
+    "project_with_intrinsics projecting with cv2.projectPoints, which takes no skew": ("lab09.ex2", """
+        def project_with_intrinsics(K, points):
+            X, single = _points(points)
+            pixels, _ = cv2.projectPoints(X.reshape(-1, 1, 3), np.zeros(3), np.zeros(3), np.asarray(K, float), None)
+            pixels = pixels.reshape(-1, 2)
+            return pixels[0] if single else pixels
+        """, ["x is computed as fx x / z + px", "projects with cv2.projectpoints, which takes no skew"]),
 }
 
 
