@@ -408,6 +408,36 @@ def test_einsum_subscripts_a_student_gets_wrong_are_offered_right():
     assert "the index n is summed over" in fixed[0].sentence, fixed[0]
 
 
+def test_containers_made_by_hand_a_list_grown_and_a_loop_bound_stored_elsewhere_are_offered():
+    """The blind set 2026-12-06e's lab 7 and 8 slips: `np.zeros((h, w))` for an image's black frame (channels and
+    dtype lost), `rhs.append([x, y])` where the items belong one by one, a homogeneous row stacked as
+    `np.ones(3)`, and RANSAC's adaptive count stored in `n` where the loop tests `needed`."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(image, A, src):
+            h, w = image.shape[:2]
+            black = np.zeros((h, w))
+            rhs = []
+            for x, y in src:
+                rhs.append([x, y])
+            H = np.vstack([A[:2], np.ones(3)])
+            n = len(src)
+            needed, drawn = 100, 0
+            while drawn < needed:
+                drawn += 1
+                n = int(np.ceil(drawn / 2))
+            return black, rhs, H, n
+    """)
+    changes = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
+    assert ("like_input", "np.zeros_like(image)") in changes
+    assert ("append_extend", "rhs.extend([x, y])") in changes
+    assert ("last_row", "[0.0, 0.0, 1.0]") in changes
+    assert ("store_name", "needed") in changes
+    # (never the loop's own counter, set in the loop, nor a name first set after the loop starts)
+    assert ("store_name", "drawn") not in changes
+
+
 def test_a_step_done_to_one_input_only_and_an_argument_another_call_is_given():
     """`xl = xl[:, 0]` with no `xr = xr[:, 0]`: the two done together; `warp(weight, H)` beside
     `warp(image, shift @ H)`: the other call's argument. Student-only, never a step already done."""

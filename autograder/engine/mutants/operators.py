@@ -139,6 +139,10 @@ OPERATORS = {
     "drop_w": ("homogeneous", "(n, 3)", "(n, 2)", "column"),
     "power_xor": ("power", "square", "xor", "^"),   # r ^ 2 (a bitwise XOR in Python) -> r ** 2
     "einsum": ("einsum", "index", "summed", "axes", "transpos"),   # 'ni,nj->ij' -> 'ni,nj->nij'
+    "like_input": ("like", "shape", "channel", "dtype"),   # np.zeros((h, w)) -> np.zeros_like(image)
+    "append_extend": ("append", "extend", "list"),     # rhs.append([x, y]) -> rhs.extend([x, y])
+    "last_row": ("row", "0, 0, 1", "homogeneous"),    # np.vstack([A, np.ones(3)]) -> np.vstack([A, [0.0, 0.0, 1.0]])
+    "store_name": ("stored", "instead of", "bound", "loop"),   # n = ... -> needed = ... (the loop's bound)
     "identity": ("identity", "eye", "diagonal", "1 -"),   # (1 - R) @ c -> (np.eye(len(R)) - R) @ c
     "half_pixel": ("half", "0.5", "pixel", "offset", "centre"),   # (x + 0.5) -> x: a half-pixel convention   # f(x1, x2), x1 homogeneous -> f(x1[:, :2], x2)   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
@@ -1844,11 +1848,17 @@ def _make_written(node, payload):
     return parse(payload, mode="eval").body   # the new expression, written out by the operator
 
 
+def _make_store_name(node, payload):
+    new = copy.deepcopy(node)   # n = f(w) -> needed = f(w): the value stored under another name
+    new.targets = [ast.Name(payload, ast.Store())]
+    return new
+
+
 def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("einsum", "per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
+_MAKE = {**{name: _make_written for name in ("einsum", "like_input", "append_extend", "last_row", "per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
                                               "unused_name", "twin_test", "drop_epsilon", "twin_values",
                                               "chosen_value", "add_stacked", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
@@ -1873,7 +1883,7 @@ _MAKE = {**{name: _make_written for name in ("einsum", "per_item", "estimator", 
          "int_division": _make_int_division, "drop_division": _make_drop_division,
          "drop_factor": _make_drop_factor, "drop_centring": _make_drop_centring,
          "drop_conversion": _make_drop_conversion, "float_kept": _make_float_kept, "other_name": _make_other_name, "derived_name": _make_other_name, "in_place": _make_in_place,
-         "drop_statement": _make_drop_statement, "extra_step": _make_drop_statement, "reshape_order": _make_reshape_order,
+         "drop_statement": _make_drop_statement, "store_name": _make_store_name, "extra_step": _make_drop_statement, "reshape_order": _make_reshape_order,
          "inverse": _make_inverse, "stack_order": _make_stack_order, "default": _make_default,
          "single_point": _make_single_point}
 
@@ -3458,6 +3468,66 @@ def _is_a_count(name: str, fn) -> bool:
         for v in values)
 
 
+def _shapes_read(fn) -> list[str]:
+    """The parameters of ``fn`` whose ``.shape`` it reads (the inputs an array may be made like)."""
+    params = {a.arg for a in fn.args.posonlyargs + fn.args.args + fn.args.kwonlyargs}
+    return sorted({n.value.id for n in ast.walk(fn) if isinstance(n, ast.Attribute) and n.attr == "shape"
+                   and isinstance(n.value, ast.Name) and n.value.id in params})
+
+
+def _enclosing_while(node, parents):
+    while id(node) in parents:
+        node = parents[id(node)][0]
+        if isinstance(node, ast.While):
+            return node
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+            return None
+    return None
+
+
+def _container_slips(node, parent, parents):
+    """Slips in making an array or a list: an array of the input's kind made by hand with a shape that
+    drops its channels or dtype (``np.zeros((h, w))`` -> ``np.zeros_like(image)``); a list grown by one item
+    where its items belong one by one (``append([x, y])`` <-> ``extend``); a homogeneous matrix's last row
+    stacked as ones (``np.ones(3)`` -> ``[0.0, 0.0, 1.0]``); a value stored in another name than the bound
+    its while loop tests (``n = ...`` where ``needed`` is tested, and never set in the loop)."""
+    dotted = _dotted(node.func) if isinstance(node, ast.Call) else ""
+    short = dotted.rsplit(".", 1)[-1]
+    if dotted.startswith(("np.", "numpy.")) and short in ("zeros", "ones", "empty") and node.args:
+        fn = _def_of(node, parents)
+        for name in (_shapes_read(fn) if fn is not None else [])[:3]:
+            yield "like_input", f"{dotted}_like({name})", ""
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in ("append", "extend") \
+            and len(node.args) == 1 and not node.keywords and isinstance(parent, ast.Expr) \
+            and (node.func.attr == "extend" or isinstance(node.args[0], (ast.List, ast.Tuple))):
+        other = "extend" if node.func.attr == "append" else "append"
+        yield "append_extend", f"{ast.unparse(node.func.value)}.{other}({ast.unparse(node.args[0])})", ""
+    if dotted in ("np.ones", "numpy.ones") and len(node.args) == 1 and not node.keywords \
+            and isinstance(parent, (ast.List, ast.Tuple)):
+        holder = parents.get(id(parent), (None,))[0]
+        size = node.args[0]
+        row = isinstance(size, ast.Constant) and size.value in (3, 4)
+        block = isinstance(size, ast.Tuple) and len(size.elts) == 2 and isinstance(size.elts[0], ast.Constant) \
+            and size.elts[0].value == 1 and isinstance(size.elts[1], ast.Constant) and size.elts[1].value in (3, 4)
+        if isinstance(holder, ast.Call) and _dotted(holder.func).rsplit(".", 1)[-1] in ("vstack", "row_stack",
+                                                                                       "concatenate") and (row or block):
+            n = (size.value if row else size.elts[1].value)
+            entries = ", ".join(["0.0"] * (n - 1) + ["1.0"])
+            yield "last_row", f"[{entries}]" if row else f"[[{entries}]]", ""
+    if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+        loop = _enclosing_while(node, parents)
+        target = node.targets[0].id
+        if loop is not None:
+            set_in_loop = {n.id for n in ast.walk(loop) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+            fn = _def_of(node, parents)
+            params = {a.arg for a in fn.args.args + fn.args.kwonlyargs} if fn is not None else set()
+            set_before = {n.id for s in (fn.body if fn is not None else []) if s.lineno < loop.lineno
+                          for n in ast.walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+            for name in sorted({n.id for n in ast.walk(loop.test) if isinstance(n, ast.Name)}):
+                if name != target and name not in set_in_loop and name in set_before and name not in params:
+                    yield "store_name", name, ""
+
+
 def _student_changes(node, parent, parents, words):
     """Changes made to a student's code only (:mod:`.repair`), told by showing them: a function applied
     that does not belong (``np.tan(s)`` for ``s``), one mistaken for its sibling (``np.sin`` for
@@ -3469,6 +3539,7 @@ def _student_changes(node, parent, parents, words):
         yield "reverse_back", f"{_operand(node)}[{_slice_text(_reversal(node.args[0]))}]", ""
     yield from _series_powers(node, parent)
     yield from _fraction_changes(node)
+    yield from _container_slips(node, parent, parents)
     for parameter in _parameters_for_identity(node, parents):
         # an identity written where a matrix the function is given belongs (cv2.initUndistortRectifyMap's
         # new camera matrix np.eye(3), where K keeps the image's pixels)
