@@ -185,6 +185,22 @@ def test_a_crop_of_an_array_smaller_than_asked_is_told_that_a_slice_never_pads()
     assert shrunk is None or "never pads" not in shrunk, shrunk   # (a step shrinks what has the size asked)
 
 
+def test_an_axis_wrong_before_a_slice_is_followed_back_to_where_it_went_wrong():
+    """`X[:, :3] / X[:, 3:]` of null vectors taken from `svd(A)[2].T` of a stack (blind set 2026-12-06e's 11/01):
+    the slice keeps axis 0 whole, so it crops nothing there and no 'copy into a larger array' is told; the
+    wrong axis came with X, made by `V[..., -1]` of a stack `.T` reversed."""
+    sentence = shape_sentence("""
+        def solve(A):
+            V = np.linalg.svd(A)[2].T
+            X = V[..., -1]
+            return X[:, :3] / X[:, 3:4]
+        """, "solve", (6, 3), np.random.default_rng(0).normal(size=(6, 4, 4)))
+    assert "never pads" not in sentence, sentence
+    assert "`V[..., -1]` (line 4) makes the shape (4, 4) from `V` of shape (4, 4, 6)" in sentence, sentence
+    assert "`V` comes from `np.linalg.svd(A)[2].T` (line 3), and on a stack of matrices .T reverses every axis" \
+        in sentence, sentence
+
+
 def test_an_array_made_without_the_values_last_axis_is_named_where_it_was_made():
     sentence = raised_sentence("""
         def paste(image):

@@ -1091,6 +1091,18 @@ def explain_shape(code, recording: Recording, function: str, got: tuple, expecte
         if same:
             node = same[0]
             continue
+        # (an operand that already has the wrong sizes on every axis that is wrong, the others changed here:
+        # `X[:, :3]` of an (4, 4) X, where (N, 3) is asked -- the wrong axis came with X, followed there)
+        wrong = [i for i, (g, e) in enumerate(zip(got, expected)) if g != e] if len(got) == len(expected) else []
+        carried = [o for o in _children(node) for shape in [recording.shape(o)]
+                   if wrong and shape is not None and len(shape) == len(got) and all(shape[i] == got[i] for i in wrong)]
+        if carried and not (isinstance(node, ast.Subscript)   # (a crop of that axis made it: told here)
+                            and _bounded_where_short(node.slice, recording.shape(carried[0]), expected)):
+            node = carried[0]
+            carried_shape = recording.shape(node)
+            expected = tuple(expected[i] if i in wrong else carried_shape[i] for i in range(len(got)))
+            got = carried_shape
+            continue
         return _made_here(fn, recording, node, statement, got, expected)
     return None
 
@@ -1170,6 +1182,32 @@ def _assignment_giving(fn, name, recording, got, before):
     return found
 
 
+def _stack_transposed(fn, arrays, line: int) -> str:
+    """Where an operand of three or more axes is a name last given as ``x.T``: on a stack of matrices
+    ``.T`` reverses every axis, the stack's own axis moved last, not each matrix transposed."""
+    for operand, shape in arrays:
+        if not (isinstance(operand, ast.Name) and len(shape) >= 3):
+            continue
+        given = _last_given(fn, operand.id, line)
+        if given is not None and isinstance(given[0], ast.Attribute) and given[0].attr == "T":
+            # measured: the recorded shape (3+ axes); read: the assignment's `.T`
+            return measured(f": {_quote(operand)} comes from {_quote(given[0])} (line {given[1]}), and on a stack of "
+                            f"matrices .T reverses every axis (here to {_shape_text(shape)}): the stack's axis goes "
+                            "last; np.swapaxes(x, -1, -2) transposes each matrix")
+    return ""
+
+
+def _bounded_where_short(index, source, expected) -> bool:
+    """Whether the index gives each axis the source is short on a slice with an end (`[:h, :w]`), as a crop
+    written for a larger array does; a whole axis (`:`) kept as it came crops nothing there."""
+    parts = index.elts if isinstance(index, ast.Tuple) else [index]
+    if any(isinstance(p, ast.Constant) and p.value is Ellipsis for p in parts):
+        return False
+    short = [i for i, (s, e) in enumerate(zip(source, expected)) if s < e]
+    return bool(short) and all(i < len(parts) and isinstance(parts[i], ast.Slice) and parts[i].upper is not None
+                               for i in short)
+
+
 def _made_here(fn, recording, node, statement, got, expected) -> Form | None:
     # (a list's items are the operands of a call given it: `np.hstack([x, y])`)
     operands = [(o, recording.shape(o)) for o in _inputs(node)]
@@ -1193,11 +1231,12 @@ def _made_here(fn, recording, node, statement, got, expected) -> Form | None:
         # (measured: the recording's shapes, each (N,), and the (N, k) asked)
         said += measured(": NumPy joins (N,) arrays end to end; as the columns of an (N, k) array they go side by "
                          "side (np.column_stack)")
+    said += _stack_transposed(fn, arrays, line)
     source = arrays[0][1]
     if isinstance(node, ast.Subscript) and len(arrays) == 1 and len(got) == len(expected) == len(source) \
             and any(s < e for s, e in zip(source, expected)) \
             and tuple(got) == tuple(min(s, e) for s, e in zip(source, expected)) \
-            and any(isinstance(part, ast.Slice) for part in ast.walk(node.slice)):
+            and _bounded_where_short(node.slice, source, expected):
         # (a crop written for a larger array: a slice never pads; measured: the slice's shapes here)
         said += measured(f": a slice crops but never pads -- where {_quote(arrays[0][0])} is smaller than "
                          f"{_shape_text(expected)}, copy it into an array of that size (zeros elsewhere: black for an image)")
