@@ -9,7 +9,7 @@ import pytest
 from autograder.engine.runner import grade
 from autograder.labs.mistakes.lab12 import ADVICE, MISTAKES
 from conftest import (THREE_ROW_TRIANGULATION, assert_advice_case, assert_advised, assert_all_not_implemented, assert_full_marks, assert_mistake_named, check_results,
-                      mutant)
+                      edited_reference, failing_messages, mutant)
 
 MODULE = "lab12_stereo"
 
@@ -376,3 +376,16 @@ def test_images_warped_by_homographies_that_send_them_out_of_the_frame_agree_wit
     checks = {c.name: c for e in result.exercises for c in e.checks}
     assert checks["rectify: the rectified images are the inputs warped by H1 and H2"].score == 2
     assert checks["rectify: most of each image stays in view"].score == 0
+
+
+def test_a_rectify_whose_maps_bring_pixels_from_behind_the_camera_is_not_told_its_fill(tmp_path):
+    """`K1.T` for the inverse of K1 (the blind set 2026-12-06e's 12/06): the homographies send part of the
+    frame behind the camera, where cv2.warpPerspective samples the input whatever its border rule. That
+    is the maps' doing (the rows check fails); the black-fill check, which told the student to use the
+    BORDER_CONSTANT its code already used, judges only pixels with a source in front."""
+    folder = edited_reference(tmp_path, "lab12_stereo",
+                              ("rot1 = R_rect @ np.linalg.inv(K1)", "rot1 = R_rect @ K1.T"),
+                              ("rot2 = R_rect @ R.T @ np.linalg.inv(K2)", "rot2 = R_rect @ R.T @ K2.T"))
+    messages = failing_messages(folder, "lab12.ex3")
+    assert any("must share a row" in m for m in messages), messages
+    assert not any("are not black" in m for m in messages), messages

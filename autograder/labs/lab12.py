@@ -1438,6 +1438,16 @@ def _warped_with_the_other(t, name, pair, rect_l, rect_r, H1, H2) -> str:
     return f"{name} alone is warped with {wrong}, the other image's homography, where {own} belongs"
 
 
+def _in_front(H, shape) -> np.ndarray:
+    """(H, W) bool: the output pixels whose pre-image under ``H`` is in front of the camera (its third
+    homogeneous coordinate of the sign most of the frame has: H is defined up to its sign)."""
+    height, width = shape[:2]
+    ys, xs = np.mgrid[0:height, 0:width].astype(np.float64)
+    inverse = np.linalg.inv(np.asarray(H, np.float64))
+    q = inverse[2, 0] * xs + inverse[2, 1] * ys + inverse[2, 2]
+    return q * np.sign(np.median(q) or 1.0) > 0
+
+
 @ex3.check("rectify leaves black the pixels whose source lies outside the image", points=1)
 def rectify_black_fill(t):
     """The API's black fill: the rectifying rotation brings in pixels from beyond each input (here about
@@ -1457,6 +1467,11 @@ def rectify_black_fill(t):
             # cv2.warpPerspective samples the input all the same -- is the other checks' to judge)
             return passed(measured(f"{name}'s homography sends most of the frame outside the input: the other "
                                    "checks judge it"))
+        # (pixels whose pre-image is behind the camera: cv2.warpPerspective samples the input there all the same,
+        # whatever its border rule -- the map's doing, which the rows and view checks judge, not the fill)
+        outside &= _in_front(H, image.shape)
+        if not outside.any():
+            continue
         nonblack = fill_fraction(got, outside)
         if nonblack > FILL_TOLERANCE:
             t.images(f"rectify(...): {name}", "the pixels with no source pixel: black fill", input=image, yours=got)
