@@ -1912,6 +1912,31 @@ def test_the_two_arrays_of_one_set_of_pairs_reordered_apart_are_read(reordered):
         """)
 
 
+@pytest.mark.parametrize("made", ["p = _homogeneous(points)", "p = np.hstack([points, np.ones((len(points), 1))])"])
+@pytest.mark.parametrize("centred", ["c = p.mean(axis=0)\n            q = p - c", "q = p - np.mean(p, axis=0)"])
+def test_homogeneous_rows_centred_with_their_ones_are_read(made, centred):
+    """`p - p.mean(axis=0)` of rows (x, y, 1) (the blind set 1206e's 11/05): the 1s become 0. Centring x and y
+    only, or points that are not homogeneous, is not read."""
+    mistake = "the homogeneous 1s centred with the points"
+    assert mistake in one(f"""
+        def f(points):
+            {made}
+            {centred}
+            return q
+        """)
+    assert mistake not in one(f"""
+        def f(points):
+            {made}
+            c = p[:, :2].mean(axis=0)
+            return p[:, :2] - c
+        """)
+    assert mistake not in one("""
+        def f(points):
+            p = np.asarray(points, float)
+            return p - p.mean(axis=0)
+        """)
+
+
 def test_a_mutable_default_written_into_is_read():
     """`def _condition(pts, T=np.eye(3)):` filling T in place (the blind set 1206d's 11/04): every call leaving T
     out shares one array. A default None, or a copy made first, is not read as one."""

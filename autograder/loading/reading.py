@@ -267,6 +267,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _safely(_loop_variable_hides_a_value, name, function)
     found += _safely(_pairs_drawn_apart, name, function)
     found += _safely(_pairs_reordered_apart, name, function)
+    found += _safely(_homogeneous_centred, name, function)
     found += _safely(_mutable_default_written, name, function)
     found += _safely(_conditional_in_a_tuple, name, function)
     found += _safely(_loop_variable_assigned_in_vain, name, function)
@@ -1447,6 +1448,57 @@ def _pairs_reordered_apart(name, function) -> list[Finding]:
                                 f"{name} ({where}) reorders `{a}` and `{b}` each by "
                                 f"its own values ({how}): row k of `{a}` is no longer the partner of row k of "
                                 f"`{b}`; keep or reorder the pairs together, with one index for both", certain=True)]
+    return []
+
+
+def _made_homogeneous(value) -> bool:
+    """``_homogeneous(pts)``, ``np.hstack([pts, np.ones((n, 1))])``, ``np.column_stack([x, y, np.ones(n)])``:
+    rows ending in a homogeneous 1."""
+    if not isinstance(value, ast.Call):
+        return False
+    called = _call_name(value)
+    if "homogen" in called.lower() and "convertPoints" not in called:
+        return True
+    return called in ("hstack", "column_stack", "concatenate") and value.args \
+        and isinstance(value.args[0], (ast.List, ast.Tuple)) and value.args[0].elts \
+        and isinstance(value.args[0].elts[-1], ast.Call) and _call_name(value.args[0].elts[-1]) in ("ones", "ones_like")
+
+
+def _column_means(value, array: str) -> bool:
+    """``array.mean(axis=0)`` or ``np.mean(array, axis=0)``: the mean of every column."""
+    if not (isinstance(value, ast.Call) and _call_name(value) == "mean" and isinstance(value.func, ast.Attribute)):
+        return False
+    if isinstance(value.func.value, ast.Name) and value.func.value.id in ("np", "numpy"):   # np.mean(array, axis=0)
+        of, positional = (value.args[0] if value.args else None), value.args[1:2]
+    else:                                                                                # array.mean(axis=0)
+        of, positional = value.func.value, value.args[:1]
+    axis = [k.value for k in value.keywords if k.arg == "axis"] or positional
+    return isinstance(of, ast.Name) and of.id == array and bool(axis) and isinstance(axis[0], ast.Constant) \
+        and axis[0].value == 0
+
+
+def _homogeneous_centred(name, function) -> list[Finding]:
+    """``p = _homogeneous(pts)`` then ``p - p.mean(axis=0)``: the centroid of rows (x, y, 1) is (cx, cy, 1), so
+    the subtraction makes every homogeneous 1 a 0 -- the points sent to infinity -- where only x and y are
+    to be centred. (One pass over the def's nodes.)"""
+    homogeneous, means = set(), {}
+    for node in _nodes(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            target = node.targets[0].id
+            if _made_homogeneous(node.value):
+                homogeneous.add(target)
+            for array in homogeneous:
+                if _column_means(node.value, array):
+                    means[target] = array
+    for node in _nodes(function):
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) and isinstance(node.left, ast.Name) \
+                and node.left.id in homogeneous and (_column_means(node.right, node.left.id) or (
+                    isinstance(node.right, ast.Name) and means.get(node.right.id) == node.left.id)):
+            array = node.left.id
+            return [Finding(name, _line(node), "the homogeneous 1s centred with the points",
+                            f"{name} (line {_line(node)}) subtracts from `{array}`, whose rows end in a homogeneous 1, "
+                            f"the mean of every column: that 1 becomes 0 in every row (the points are sent to "
+                            f"infinity); centre x and y only (`{array}[:, :2]` and its mean)", certain=True)]
     return []
 
 
