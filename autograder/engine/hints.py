@@ -122,6 +122,20 @@ def call_in_a_loop(functions, names) -> tuple[str, int] | None:
     return None
 
 
+def step_under_a_condition(functions, matches) -> tuple[str, int, int] | None:
+    """(the test as written, its line, the step's line) of the first node ``matches`` accepts that runs only
+    under an ``if`` of ``functions`` (in its body or its else): a step the sheet makes always, made on some
+    inputs only; None when every such node runs unconditionally (or there is none)."""
+    for function in functions:
+        for branch in ast.walk(function):
+            if not isinstance(branch, ast.If):
+                continue
+            for node in (n for part in branch.body + branch.orelse for n in ast.walk(part)):
+                if matches(node):
+                    return " ".join(ast.unparse(branch.test).split()), branch.lineno, node.lineno
+    return None
+
+
 def _path(node) -> str:
     """``np.linalg.svd`` for that expression, ``.argmax`` for ``x.argmax`` on anything else."""
     parts = []

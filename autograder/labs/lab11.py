@@ -30,7 +30,8 @@ from ..engine.claims import (DIVISION, THIRD_COORDINATE, calls_any, checklist, d
                              look_at,
                              measured, reshapes, returns_from, subtracts_a_mean, takes_last_row_of_vt,
                              treats_each_of, wherever_written, zeroes_an_entry)
-from ..engine.hints import RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, functions_read, keyword, mentions
+from ..engine.hints import (RATIO_TEST, Hint, Predicate, _path, calls, code_of, expr, functions_read, keyword, mentions,
+                            step_under_a_condition)
 from ..engine.ignored import never_read
 from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canvas, call_probe, confirm,
                               fail_if_front_points_not_given,
@@ -1243,7 +1244,27 @@ def essential_8point_singular_values(t):
                + said, mistake=ESSENTIAL_MISTAKES["rank2_only"])
     t.fail(f"essential_8point: it looks like the singular values were not set to (1, 1, 0) after the "
            f"least-squares solution: they are proportional to (1, {s[1]:.4f}, {s[2]:.4f}); an essential "
-           "matrix has (s, s, 0).", mistake="the singular values were not set to (1, 1, 0)")
+           "matrix has (s, s, 0)." + _set_only_sometimes(t), mistake="the singular values were not set to (1, 1, 0)")
+
+
+def _diag_one_one_zero(node) -> bool:
+    """``np.diag([1, 1, 0])`` in any spelling of its numbers (``(1.0, 1.0, 0.0)``)."""
+    if not (isinstance(node, ast.Call) and ast.unparse(node.func) in ("np.diag", "numpy.diag") and node.args
+            and isinstance(node.args[0], (ast.List, ast.Tuple))):
+        return False
+    items = node.args[0].elts
+    return len(items) == 3 and all(isinstance(i, ast.Constant) and isinstance(i.value, (int, float))
+                                   for i in items) and [float(i.value) for i in items] == [1.0, 1.0, 0.0]
+
+
+def _set_only_sometimes(t) -> str:
+    """Where the code builds diag(1, 1, 0) only under a test: that test left E as it was on this input."""
+    found = step_under_a_condition(code_of(t).reachable(["essential_8point"]), _diag_one_one_zero)
+    if found is None:
+        return ""
+    test, line, step = found
+    return from_code(f" Your code sets them (line {step}) only under `if {test}:` (line {line}), which left them as "
+                     "they were on this input: every essential matrix has them, so set them every time.")
 
 
 @ex3.check("essential_8point: the epipolar constraint holds on noisy normalised points", points=2)
