@@ -411,7 +411,8 @@ def test_einsum_subscripts_a_student_gets_wrong_are_offered_right():
 def test_containers_made_by_hand_a_list_grown_and_a_loop_bound_stored_elsewhere_are_offered():
     """The blind set 2026-12-06e's lab 7 and 8 slips: `np.zeros((h, w))` for an image's black frame (channels and
     dtype lost), `rhs.append([x, y])` where the items belong one by one, a homogeneous row stacked as
-    `np.ones(3)`, and RANSAC's adaptive count stored in `n` where the loop tests `needed`."""
+    `np.ones(3)`, and RANSAC's adaptive count stored in `n` where the loop tests `needed`; and lab 9's
+    `map(pinhole_project, X, fs)`."""
     source = textwrap.dedent("""
         import numpy as np
 
@@ -427,13 +428,16 @@ def test_containers_made_by_hand_a_list_grown_and_a_loop_bound_stored_elsewhere_
             while drawn < needed:
                 drawn += 1
                 n = int(np.ceil(drawn / 2))
-            return black, rhs, H, n
+            views = list(map(np.dot, src, A))
+            return black, rhs, H, n, views
     """)
     changes = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
     assert ("like_input", "np.zeros_like(image)") in changes
     assert ("append_extend", "rhs.extend([x, y])") in changes
     assert ("last_row", "[0.0, 0.0, 1.0]") in changes
     assert ("store_name", "needed") in changes
+    # (and map zipping two iterables where one is meant whole: `map(f, X, fs)`, the blind set's 09/03)
+    assert ("map_whole", "map(lambda each_: np.dot(src, each_), A)") in changes
     # (never the loop's own counter, set in the loop, nor a name first set after the loop starts)
     assert ("store_name", "drawn") not in changes
 

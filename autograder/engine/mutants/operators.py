@@ -143,6 +143,7 @@ OPERATORS = {
     "append_extend": ("append", "extend", "list"),     # rhs.append([x, y]) -> rhs.extend([x, y])
     "last_row": ("row", "0, 0, 1", "homogeneous"),    # np.vstack([A, np.ones(3)]) -> np.vstack([A, [0.0, 0.0, 1.0]])
     "store_name": ("stored", "instead of", "bound", "loop"),   # n = ... -> needed = ... (the loop's bound)
+    "map_whole": ("map", "each", "whole", "pair"),    # map(f, X, fs) -> map(lambda each_: f(X, each_), fs)
     "identity": ("identity", "eye", "diagonal", "1 -"),   # (1 - R) @ c -> (np.eye(len(R)) - R) @ c
     "half_pixel": ("half", "0.5", "pixel", "offset", "centre"),   # (x + 0.5) -> x: a half-pixel convention   # f(x1, x2), x1 homogeneous -> f(x1[:, :2], x2)   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
@@ -1858,7 +1859,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("einsum", "like_input", "append_extend", "last_row", "per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
+_MAKE = {**{name: _make_written for name in ("einsum", "map_whole", "like_input", "append_extend", "last_row", "per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
                                               "unused_name", "twin_test", "drop_epsilon", "twin_values",
                                               "chosen_value", "add_stacked", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
@@ -3514,6 +3515,13 @@ def _container_slips(node, parent, parents):
             n = (size.value if row else size.elts[1].value)
             entries = ", ".join(["0.0"] * (n - 1) + ["1.0"])
             yield "last_row", f"[{entries}]" if row else f"[[{entries}]]", ""
+    if dotted == "map" and len(node.args) == 3 and not node.keywords \
+            and isinstance(node.args[0], (ast.Name, ast.Attribute)):
+        # (map zips its iterables -- call i gets item i of each -- where one was meant whole with each item of
+        # the other: `map(pinhole_project, X, fs)` for one projection of all of X per focal length)
+        f, first, second = (ast.unparse(a) for a in node.args)
+        yield "map_whole", f"map(lambda each_: {f}({first}, each_), {second})", ""
+        yield "map_whole", f"map(lambda each_: {f}(each_, {second}), {first})", ""
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
         loop = _enclosing_while(node, parents)
         target = node.targets[0].id
