@@ -429,7 +429,11 @@ def test_containers_made_by_hand_a_list_grown_and_a_loop_bound_stored_elsewhere_
                 drawn += 1
                 n = int(np.ceil(drawn / 2))
             views = list(map(np.dot, src, A))
-            return black, rhs, H, n, views
+            best = np.zeros((3, len(src)))
+            for y in range(3):
+                for x in range(len(src) - 1, 0, -1):
+                    best[y, x] = x
+            return black, rhs, H, n, views, best
     """)
     changes = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
     assert ("like_input", "np.zeros_like(image)") in changes
@@ -438,6 +442,8 @@ def test_containers_made_by_hand_a_list_grown_and_a_loop_bound_stored_elsewhere_
     assert ("store_name", "needed") in changes
     # (and map zipping two iterables where one is meant whole: `map(f, X, fs)`, the blind set's 09/03)
     assert ("map_whole", "map(lambda each_: np.dot(src, each_), A)") in changes
+    # (and a value written one place off along its innermost loop: a backtrack's column x - 1 stored in x)
+    assert ("index_step", (1, -1)) in changes and ("index_step", (0, -1)) not in changes
     # (never the loop's own counter, set in the loop, nor a name first set after the loop starts)
     assert ("store_name", "drawn") not in changes
 

@@ -144,6 +144,7 @@ OPERATORS = {
     "last_row": ("row", "0, 0, 1", "homogeneous"),    # np.vstack([A, np.ones(3)]) -> np.vstack([A, [0.0, 0.0, 1.0]])
     "store_name": ("stored", "instead of", "bound", "loop"),   # n = ... -> needed = ... (the loop's bound)
     "map_whole": ("map", "each", "whole", "pair"),    # map(f, X, fs) -> map(lambda each_: f(X, each_), fs)
+    "index_step": ("index", "one place", "off by one", "column", "row"),   # out[y, x] = d -> out[y, x - 1] = d
     "identity": ("identity", "eye", "diagonal", "1 -"),   # (1 - R) @ c -> (np.eye(len(R)) - R) @ c
     "half_pixel": ("half", "0.5", "pixel", "offset", "centre"),   # (x + 0.5) -> x: a half-pixel convention   # f(x1, x2), x1 homogeneous -> f(x1[:, :2], x2)   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
@@ -1849,6 +1850,18 @@ def _make_written(node, payload):
     return parse(payload, mode="eval").body   # the new expression, written out by the operator
 
 
+def _make_index_step(node, payload):
+    new = copy.deepcopy(node)   # out[y, x] = d -> out[y, x - 1] = d
+    position, delta = payload
+    stepped = ast.BinOp(new.slice.elts[position] if isinstance(new.slice, ast.Tuple) else new.slice,
+                        ast.Sub() if delta < 0 else ast.Add(), ast.Constant(abs(delta)))
+    if isinstance(new.slice, ast.Tuple):
+        new.slice.elts[position] = stepped
+    else:
+        new.slice = stepped
+    return new
+
+
 def _make_store_name(node, payload):
     new = copy.deepcopy(node)   # n = f(w) -> needed = f(w): the value stored under another name
     new.targets = [ast.Name(payload, ast.Store())]
@@ -1884,7 +1897,7 @@ _MAKE = {**{name: _make_written for name in ("einsum", "map_whole", "like_input"
          "int_division": _make_int_division, "drop_division": _make_drop_division,
          "drop_factor": _make_drop_factor, "drop_centring": _make_drop_centring,
          "drop_conversion": _make_drop_conversion, "float_kept": _make_float_kept, "other_name": _make_other_name, "derived_name": _make_other_name, "in_place": _make_in_place,
-         "drop_statement": _make_drop_statement, "store_name": _make_store_name, "extra_step": _make_drop_statement, "reshape_order": _make_reshape_order,
+         "drop_statement": _make_drop_statement, "store_name": _make_store_name, "index_step": _make_index_step, "extra_step": _make_drop_statement, "reshape_order": _make_reshape_order,
          "inverse": _make_inverse, "stack_order": _make_stack_order, "default": _make_default,
          "single_point": _make_single_point}
 
@@ -3486,6 +3499,17 @@ def _enclosing_while(node, parents):
     return None
 
 
+def _loop_names(node, parents) -> set[str]:
+    """The names the innermost ``for`` loop around ``node`` (in its def) takes."""
+    while id(node) in parents:
+        node = parents[id(node)][0]
+        if isinstance(node, ast.For):
+            return {n.id for n in ast.walk(node.target) if isinstance(n, ast.Name)}
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+            break
+    return set()
+
+
 def _container_slips(node, parent, parents):
     """Slips in making an array or a list: an array of the input's kind made by hand with a shape that
     drops its channels or dtype (``np.zeros((h, w))`` -> ``np.zeros_like(image)``); a list grown by one item
@@ -3515,6 +3539,14 @@ def _container_slips(node, parent, parents):
             n = (size.value if row else size.elts[1].value)
             entries = ", ".join(["0.0"] * (n - 1) + ["1.0"])
             yield "last_row", f"[{entries}]" if row else f"[[{entries}]]", ""
+    if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Store):
+        # (a value written one place off along the loop: a backtrack storing column x - 1's choice in column x)
+        looped = _loop_names(node, parents)
+        parts = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+        for position, part in enumerate(parts):
+            if isinstance(part, ast.Name) and part.id in looped:
+                yield "index_step", (position, -1), ""
+                yield "index_step", (position, +1), ""
     if dotted == "map" and len(node.args) == 3 and not node.keywords \
             and isinstance(node.args[0], (ast.Name, ast.Attribute)):
         # (map zips its iterables -- call i gets item i of each -- where one was meant whole with each item of
