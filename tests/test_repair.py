@@ -433,7 +433,9 @@ def test_containers_made_by_hand_a_list_grown_and_a_loop_bound_stored_elsewhere_
             for y in range(3):
                 for x in range(len(src) - 1, 0, -1):
                     best[y, x] = x
-            return black, rhs, H, n, views, best
+            top, left = src.min(axis=0)
+            shift = np.array([[1.0, 0.0, -top], [0.0, 1.0, -left], [0.0, 0.0, 1.0]])
+            return black, rhs, H, n, views, best, shift
     """)
     changes = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
     assert ("like_input", "np.zeros_like(image)") in changes
@@ -444,6 +446,11 @@ def test_containers_made_by_hand_a_list_grown_and_a_loop_bound_stored_elsewhere_
     assert ("map_whole", "map(lambda each_: np.dot(src, each_), A)") in changes
     # (and a value written one place off along its innermost loop: a backtrack's column x - 1 stored in x)
     assert ("index_step", (1, -1)) in changes and ("index_step", (0, -1)) not in changes
+    # (and the two offsets of a canvas shift crossed between its rows -- lab 8's 06 -- but never two numbers
+    # written out, the 1s and 0s of the matrix's own structure)
+    crossed = {m.edits[0][3] for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+               if m.operator == "cross_items"}
+    assert (0, 1, 2) in crossed and (0, 1, 0) not in crossed and (0, 1, 1) not in crossed, crossed
     # (never the loop's own counter, set in the loop, nor a name first set after the loop starts)
     assert ("store_name", "drawn") not in changes
 

@@ -6527,8 +6527,11 @@ def _item_swaps(node, parent):
     if len(points) == len(items) <= 4 and len({len(p.elts) for p in points}) == 1 and 2 <= len(points[0].elts) <= 3:
         for i, j in itertools.combinations(range(len(items)), 2):
             for k in range(len(points[0].elts)):
-                if ast.dump(points[i].elts[k]) != ast.dump(points[j].elts[k]) \
-                        and ast.dump(points[i]) != ast.dump(points[j]):
+                a, b = points[i].elts[k], points[j].elts[k]
+                if ast.dump(a) != ast.dump(b) and ast.dump(points[i]) != ast.dump(points[j]) \
+                        and not (isinstance(_bare(a), ast.Constant) and isinstance(_bare(b), ast.Constant)):
+                    # (two numbers written out exchanged between rows is a matrix's own structure, which the
+                    # items' own exchanges reach; the values a student computes are what get crossed)
                     yield "cross_items", (i, j, k), ""
 
 
