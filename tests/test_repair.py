@@ -435,7 +435,8 @@ def test_containers_made_by_hand_a_list_grown_and_a_loop_bound_stored_elsewhere_
                     best[y, x] = x
             top, left = src.min(axis=0)
             shift = np.array([[1.0, 0.0, -top], [0.0, 1.0, -left], [0.0, 0.0, 1.0]])
-            return black, rhs, H, n, views, best, shift
+            end = (left, h - 1 - top)
+            return black, rhs, H, n, views, best, shift, end
     """)
     changes = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
     assert ("like_input", "np.zeros_like(image)") in changes
@@ -451,6 +452,8 @@ def test_containers_made_by_hand_a_list_grown_and_a_loop_bound_stored_elsewhere_
     crossed = {m.edits[0][3] for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
                if m.operator == "cross_items"}
     assert (0, 1, 2) in crossed and (0, 1, 0) not in crossed and (0, 1, 1) not in crossed, crossed
+    # (and a coordinate counted from the far end, `h - 1 - y`, offered as counted: lab 11's 03)
+    assert ("unflip", "top") in changes
     # (never the loop's own counter, set in the loop, nor a name first set after the loop starts)
     assert ("store_name", "drawn") not in changes
 

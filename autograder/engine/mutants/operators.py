@@ -145,6 +145,7 @@ OPERATORS = {
     "store_name": ("stored", "instead of", "bound", "loop"),   # n = ... -> needed = ... (the loop's bound)
     "map_whole": ("map", "each", "whole", "pair"),    # map(f, X, fs) -> map(lambda each_: f(X, each_), fs)
     "index_step": ("index", "one place", "off by one", "column", "row"),   # out[y, x] = d -> out[y, x - 1] = d
+    "unflip": ("flip", "upside", "mirror", "far end", "- 1 -"),   # (x, h - 1 - y) -> (x, y)
     "identity": ("identity", "eye", "diagonal", "1 -"),   # (1 - R) @ c -> (np.eye(len(R)) - R) @ c
     "half_pixel": ("half", "0.5", "pixel", "offset", "centre"),   # (x + 0.5) -> x: a half-pixel convention   # f(x1, x2), x1 homogeneous -> f(x1[:, :2], x2)   # f(img, channel_axis=-1) -> channel_axis=-1 if img.ndim == 3 else None   # np.linalg.norm(l - r, axis=1) -> (l - r)[:, 0]
     "perspective_warp": ("warp", "perspective", "affine", "homograph"),   # cv2.warpAffine(i, H[:2], s) -> cv2.warpPerspective(i, H, s)   # p2 * r2 + 2 * x * x -> p2 * (r2 + 2 * x * x)   # diff ** 2 -> diff.astype(np.float64) ** 2 (uint8 wraps)   # cv2.convertPointsToHomogeneous(p) -> ...(p)[:, 0]: (N, 1, 3) -> (N, 3)   # warp(moving, H) -> warp(moving, H, dsize=(w, h))   # tuple(rng.integers(0, 256, 3)) -> tuple(map(int, ...))
@@ -1872,7 +1873,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("einsum", "map_whole", "like_input", "append_extend", "last_row", "per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
+_MAKE = {**{name: _make_written for name in ("einsum", "map_whole", "unflip", "like_input", "append_extend", "last_row", "per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
                                               "unused_name", "twin_test", "drop_epsilon", "twin_values",
                                               "chosen_value", "add_stacked", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
@@ -3547,6 +3548,11 @@ def _container_slips(node, parent, parents):
             if isinstance(part, ast.Name) and part.id in looped:
                 yield "index_step", (position, -1), ""
                 yield "index_step", (position, +1), ""
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) and isinstance(node.left, ast.BinOp) \
+            and isinstance(node.left.op, ast.Sub) and isinstance(node.left.right, ast.Constant) \
+            and node.left.right.value == 1 and isinstance(node.left.left, (ast.Name, ast.Attribute, ast.Subscript)):
+        # (a coordinate counted from the far end, `h - 1 - y`: an image's y counted upwards, where rows count down)
+        yield "unflip", ast.unparse(node.right), ""
     if dotted == "map" and len(node.args) == 3 and not node.keywords \
             and isinstance(node.args[0], (ast.Name, ast.Attribute)):
         # (map zips its iterables -- call i gets item i of each -- where one was meant whole with each item of
