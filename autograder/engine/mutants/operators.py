@@ -3484,10 +3484,25 @@ def _is_a_count(name: str, fn) -> bool:
 
 
 def _shapes_read(fn) -> list[str]:
-    """The parameters of ``fn`` whose ``.shape`` it reads (the inputs an array may be made like)."""
-    params = {a.arg for a in fn.args.posonlyargs + fn.args.args + fn.args.kwonlyargs}
-    return sorted({n.value.id for n in ast.walk(fn) if isinstance(n, ast.Attribute) and n.attr == "shape"
-                   and isinstance(n.value, ast.Name) and n.value.id in params})
+    """The parameters of ``fn`` whose ``.shape`` it reads (the inputs an array may be made like; read once per def)."""
+    if not hasattr(fn, "_shapes_read"):
+        params = {a.arg for a in fn.args.posonlyargs + fn.args.args + fn.args.kwonlyargs}
+        fn._shapes_read = sorted({n.value.id for n in ast.walk(fn) if isinstance(n, ast.Attribute)
+                                  and n.attr == "shape" and isinstance(n.value, ast.Name) and n.value.id in params})
+    return fn._shapes_read
+
+
+def _loop_bounds(loop, fn) -> list[str]:
+    """The names a while loop's test reads that the def sets before the loop and the loop never sets (the
+    bounds it is meant to update: RANSAC's adaptive count), read once per loop."""
+    if not hasattr(loop, "_bounds"):
+        set_in_loop = {n.id for n in ast.walk(loop) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+        params = {a.arg for a in fn.args.args + fn.args.kwonlyargs}
+        set_before = {n.id for s in fn.body if s.lineno < loop.lineno
+                      for n in ast.walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+        loop._bounds = sorted({n.id for n in ast.walk(loop.test) if isinstance(n, ast.Name)
+                               and n.id not in set_in_loop and n.id in set_before and n.id not in params})
+    return loop._bounds
 
 
 def _enclosing_while(node, parents):
@@ -3516,7 +3531,9 @@ def _container_slips(node, parent, parents):
     drops its channels or dtype (``np.zeros((h, w))`` -> ``np.zeros_like(image)``); a list grown by one item
     where its items belong one by one (``append([x, y])`` <-> ``extend``); a homogeneous matrix's last row
     stacked as ones (``np.ones(3)`` -> ``[0.0, 0.0, 1.0]``); a value stored in another name than the bound
-    its while loop tests (``n = ...`` where ``needed`` is tested, and never set in the loop)."""
+    its while loop tests (``n = ...`` where ``needed`` is tested, and never set in the loop); a value written
+    one place off along its innermost loop (``out[y, x]`` -> ``out[y, x - 1]``); a coordinate counted from the
+    far end (``h - 1 - y`` -> ``y``); ``map`` zipping two iterables where one is meant whole."""
     dotted = _dotted(node.func) if isinstance(node, ast.Call) else ""
     short = dotted.rsplit(".", 1)[-1]
     if dotted.startswith(("np.", "numpy.")) and short in ("zeros", "ones", "empty") and node.args:
@@ -3561,17 +3578,10 @@ def _container_slips(node, parent, parents):
         yield "map_whole", f"map(lambda each_: {f}({first}, each_), {second})", ""
         yield "map_whole", f"map(lambda each_: {f}(each_, {second}), {first})", ""
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
-        loop = _enclosing_while(node, parents)
-        target = node.targets[0].id
-        if loop is not None:
-            set_in_loop = {n.id for n in ast.walk(loop) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
-            fn = _def_of(node, parents)
-            params = {a.arg for a in fn.args.args + fn.args.kwonlyargs} if fn is not None else set()
-            set_before = {n.id for s in (fn.body if fn is not None else []) if s.lineno < loop.lineno
-                          for n in ast.walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
-            for name in sorted({n.id for n in ast.walk(loop.test) if isinstance(n, ast.Name)}):
-                if name != target and name not in set_in_loop and name in set_before and name not in params:
-                    yield "store_name", name, ""
+        loop, fn = _enclosing_while(node, parents), _def_of(node, parents)
+        for name in (_loop_bounds(loop, fn) if loop is not None and fn is not None else []):
+            if name != node.targets[0].id:
+                yield "store_name", name, ""
 
 
 def _student_changes(node, parent, parents, words):
