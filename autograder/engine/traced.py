@@ -505,8 +505,7 @@ def _axis_lost_in_opencv(fn, line: int, a, sa, b, sb) -> str:
             continue
         made = _made_of(fn, short.id, line)
         added = [(n.lineno, n) for n in made if _axis_added(n)]
-        calls = [(n.lineno, n) for n in made if isinstance(n, ast.Call) and _called_name(n) != ""
-                 and ast.unparse(n.func).startswith("cv2.")]
+        calls = [(n.lineno, n) for n in made if isinstance(n, ast.Call) and ast.unparse(n.func).startswith("cv2.")]
         later = [(at, call) for at, call in calls if added and at > min(at_ for at_, _ in added)]
         if not later:
             continue
