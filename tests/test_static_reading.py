@@ -1937,6 +1937,28 @@ def test_homogeneous_rows_centred_with_their_ones_are_read(made, centred):
         """)
 
 
+def test_keypoints_sorted_apart_from_their_descriptors_are_read():
+    """`kp, des = sift.detectAndCompute(...)` then `kp = sorted(kp, key=...)` (the blind sets 1201i's 08/05 and
+    1206e's 11/06): descriptor i no longer belongs to keypoint i. Sorted together, or the descriptors given an
+    order too, is not read."""
+    mistake = "keypoints reordered apart from their descriptors"
+    source = """
+        def f(image, sift):
+            kp, des = sift.detectAndCompute(image, None)
+            kp = sorted(kp, key=lambda k: -k.response)
+            return kp, des
+        """
+    assert mistake in one(source)
+    assert mistake not in one(source.replace("return kp, des", "des = des[np.argsort([-k.response for k in kp])]\n"
+                                                                "            return kp, des"))
+    assert mistake not in one("""
+        def f(image, sift):
+            kp, des = sift.detectAndCompute(image, None)
+            order = np.argsort([-k.response for k in kp])
+            return [kp[i] for i in order], des[order]
+        """)
+
+
 def test_a_mutable_default_written_into_is_read():
     """`def _condition(pts, T=np.eye(3)):` filling T in place (the blind set 1206d's 11/04): every call leaving T
     out shares one array. A default None, or a copy made first, is not read as one."""

@@ -268,6 +268,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _safely(_pairs_drawn_apart, name, function)
     found += _safely(_pairs_reordered_apart, name, function)
     found += _safely(_homogeneous_centred, name, function)
+    found += _safely(_keypoints_sorted_apart, name, function)
     found += _safely(_mutable_default_written, name, function)
     found += _safely(_conditional_in_a_tuple, name, function)
     found += _safely(_loop_variable_assigned_in_vain, name, function)
@@ -1499,6 +1500,35 @@ def _homogeneous_centred(name, function) -> list[Finding]:
                             f"{name} (line {_line(node)}) subtracts from `{array}`, whose rows end in a homogeneous 1, "
                             f"the mean of every column: that 1 becomes 0 in every row (the points are sent to "
                             f"infinity); centre x and y only (`{array}[:, :2]` and its mean)", certain=True)]
+    return []
+
+
+def _keypoints_sorted_apart(name, function) -> list[Finding]:
+    """``kp, des = sift.detectAndCompute(...)`` then ``kp = sorted(kp, key=...)`` with ``des`` left in its order:
+    descriptor i no longer belongs to keypoint i, so every match's indices point at other keypoints. (One
+    pass over the def's assignments.)"""
+    made, later = {}, []   # keypoints -> (descriptors, line); assignments after
+    for node in _nodes(function):
+        if isinstance(node, ast.Assign) and len(node.targets) == 1:
+            target = node.targets[0]
+            if isinstance(target, ast.Tuple) and len(target.elts) == 2 and all(isinstance(e, ast.Name) for e in target.elts) \
+                    and isinstance(node.value, ast.Call) and _call_name(node.value) in ("detectAndCompute", "compute"):
+                made[target.elts[0].id] = (target.elts[1].id, _line(node))
+            later.append(node)
+    for node in sorted(later, key=_line):
+        target = node.targets[0]
+        if isinstance(target, ast.Name) and target.id in made and isinstance(node.value, ast.Call) \
+                and _call_name(node.value) in ("sorted", "reversed") and node.value.args \
+                and isinstance(node.value.args[0], ast.Name) and node.value.args[0].id == target.id:
+            descriptors, line = made[target.id]
+            if any(_line(other) > line and any(isinstance(t, ast.Name) and t.id == descriptors
+                                               for t in ast.walk(other.targets[0])) for other in later):
+                continue   # (the descriptors are given an order too: whether it is the same, the checks say)
+            return [Finding(name, _line(node), "keypoints reordered apart from their descriptors",
+                            f"{name} (line {_line(node)}) reorders `{target.id}` with `{_call_name(node.value)}` but "
+                            f"not `{descriptors}`, made with it on line {line}: descriptor i no longer belongs to "
+                            f"keypoint i, so each match's indices point at other keypoints; keep them in the order "
+                            f"they were made, or put both in one order", certain=True)]
     return []
 
 
