@@ -1120,10 +1120,18 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
             if slip:
                 return partial(0.5, f"{what}: the pose is right, but the reprojected corners are wrong: "
                                     f"it looks like {slip}.", mistake=slip)
-            return partial(0.5, f"{what}: the pose is right (rotation off by {angle:.2f} deg, translation by "
-                                f"{rel:.2%}), but the reprojected corners miss the corners by up to "
-                                f"{format_apart(reproj_error, REPROJECTION_TOLERANCE, 2)} px: "
-                                + PROJECT_POINTS_HINT.said(t))
+            off = f"rotation off by {angle:.2f} deg, translation by {rel:.2%}"
+            missed = f"{format_apart(reproj_error, REPROJECTION_TOLERANCE, 2)} px"
+            if _apart_from_own_projection(reprojected, rvec, tvec, pattern, square, K, dist) <= CONSISTENCY_TOLERANCE:
+                # (measured: the corners returned are the returned pose's own projection -- the projection step
+                # is right; the pose is off by just enough to move them)
+                return partial(0.5, measured(
+                    f"{what}: the corners returned are your pose's own projection, but they miss the corners by up "
+                    f"to {missed}: the pose is near ({off}) but not as exact as cv2.solvePnP gives from the "
+                    "detected corners (refined), so look at what cv2.solvePnP is given (the corners as found, the "
+                    "object points, K and dist as they are)."))
+            return partial(0.5, f"{what}: the pose is right ({off}), but the reprojected corners miss the corners by "
+                                f"up to {missed}: " + PROJECT_POINTS_HINT.said(t))
         apart = _apart_from_own_projection(reprojected, rvec, tvec, pattern, square, K, dist)
         if apart > CONSISTENCY_TOLERANCE:
             return partial(0.5, measured(f"{what}: the pose is right, but the corners returned are not the board "

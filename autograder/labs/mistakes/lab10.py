@@ -1157,6 +1157,11 @@ MISTAKES = {
                 poses[i] = np.concatenate([rvec, tvec])
             return poses
         """, ["changing `enumerate(frames, start=1)` to `enumerate(frames)`"]),
+    # (blind set 2026-12-06e: the pose from corners cut to whole pixels, its own projection returned)
+    "estimate_pose giving solvePnP the refined corners cut to whole pixels": ("lab10.ex6", reference_def_with(
+        "lab10_camera2", "estimate_pose", "_, rvec, tvec = cv2.solvePnP(objp, corners, K, dist)",
+        "_, rvec, tvec = cv2.solvePnP(objp, corners.astype(np.int32).astype(np.float64), K, dist)"),
+        ["the corners returned are your pose's own projection", "look at what cv2.solvepnp is given"]),
 }
 
 
