@@ -412,3 +412,28 @@ def test_a_dp_choosing_each_column_from_the_left_is_read_as_a_greedy_pass(loop, 
     from autograder.labs.lab12 import _chosen_from_the_left
     function = ast.parse(f"def dp_stereo(left, right):\n    {loop}\n    return disparity\n").body[0]
     assert (_chosen_from_the_left([function]) is not None) is greedy
+
+
+def test_a_step_under_a_condition_is_found_only_where_it_is_never_made_unconditionally():
+    """hints.step_under_a_condition (the rank step of essential_8point under a 5% test, blind set 2026-12-06e):
+    the test and both lines where the step is only ever made under an if; nothing where it is also made
+    outside every if (then the test is not what left it undone)."""
+    import ast as _ast
+    from autograder.engine.hints import step_under_a_condition
+    is_diag = lambda node: isinstance(node, _ast.Call) and _ast.unparse(node.func) == "np.diag"  # noqa: E731
+    conditional = _ast.parse(textwrap.dedent("""
+        def f(E, s):
+            U, _, Vt = np.linalg.svd(E)
+            if s[1] < 0.95 * s[0]:
+                E = U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+            return E
+        """)).body[0]
+    assert step_under_a_condition([conditional], is_diag) == ("s[1] < 0.95 * s[0]", 4, 5)
+    always = _ast.parse(textwrap.dedent("""
+        def f(E, s):
+            U, _, Vt = np.linalg.svd(E)
+            if s[2] > 1:
+                E = U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+            return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+        """)).body[0]
+    assert step_under_a_condition([always], is_diag) is None

@@ -125,15 +125,24 @@ def call_in_a_loop(functions, names) -> tuple[str, int] | None:
 def step_under_a_condition(functions, matches) -> tuple[str, int, int] | None:
     """(the test as written, its line, the step's line) of the first node ``matches`` accepts that runs only
     under an ``if`` of ``functions`` (in its body or its else): a step the sheet makes always, made on some
-    inputs only; None when every such node runs unconditionally (or there is none)."""
+    inputs only; None when there is none, or when one of them runs outside every ``if`` (the step is made
+    always there, whatever the test elsewhere). One pass over each function."""
+    found = None
     for function in functions:
-        for branch in ast.walk(function):
-            if not isinstance(branch, ast.If):
-                continue
-            for node in (n for part in branch.body + branch.orelse for n in ast.walk(part)):
-                if matches(node):
-                    return " ".join(ast.unparse(branch.test).split()), branch.lineno, node.lineno
-    return None
+        todo = [(function, None)]   # (node, the innermost if whose body or else holds it)
+        while todo:
+            node, branch = todo.pop()
+            if node is not function and matches(node):
+                if branch is None:
+                    return None
+                here = (" ".join(ast.unparse(branch.test).split()), branch.lineno, node.lineno)
+                found = min(found, here, key=lambda f: f[2]) if found else here   # (the first in the file)
+            if isinstance(node, ast.If):
+                todo.append((node.test, branch))
+                todo.extend((part, node) for part in node.body + node.orelse)
+            else:
+                todo.extend((child, branch) for child in ast.iter_child_nodes(node))
+    return found
 
 
 def _path(node) -> str:

@@ -28,7 +28,7 @@ from ..engine.claims import (calls_any, checklist, divides_by, evidenced, from_c
 from ..engine.compare import (at_precision, blurred_difference, closest, fill_fraction, format_apart, format_arrays_apart,
                        magnitude, projective_distance)
 from ..engine.forms import scale_form
-from ..engine.hints import Hint, Predicate, _path, calls, code_of, expr, mentions
+from ..engine.hints import Hint, Predicate, _path, calls, code_of, expr, functions_read, mentions
 from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, format_matrix,
                              name_mistake, parameter_ignored,
                              name_correspondences_left_out, repeating_border, where_matrices_differ)
@@ -1125,11 +1125,14 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
             if _apart_from_own_projection(reprojected, rvec, tvec, pattern, square, K, dist) <= CONSISTENCY_TOLERANCE:
                 # (measured: the corners returned are the returned pose's own projection -- the projection step
                 # is right; the pose is off by just enough to move them)
+                # (read: where the code calls cv2.solvePnP, its inputs are the place; else the pose's own computation)
+                look = from_code("look at what cv2.solvePnP is given (the corners as found, the object points, K "
+                                 "and dist as they are)") if calls("cv2.solvePnP").found(
+                    code_of(t).reachable(functions_read(t))) else "look at how the pose is computed from the corners"
                 return partial(0.5, measured(
                     f"{what}: the corners returned are your pose's own projection, but they miss the corners by up "
                     f"to {missed}: the pose is near ({off}) but not as exact as cv2.solvePnP gives from the "
-                    "detected corners (refined), so look at what cv2.solvePnP is given (the corners as found, the "
-                    "object points, K and dist as they are)."))
+                    "detected corners (refined), so ") + look + ".")
             return partial(0.5, f"{what}: the pose is right ({off}), but the reprojected corners miss the corners by "
                                 f"up to {missed}: " + PROJECT_POINTS_HINT.said(t))
         apart = _apart_from_own_projection(reprojected, rvec, tvec, pattern, square, K, dist)
