@@ -1126,9 +1126,10 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                 # (measured: the corners returned are the returned pose's own projection -- the projection step
                 # is right; the pose is off by just enough to move them)
                 # (read: where the code calls cv2.solvePnP, its inputs are the place; else the pose's own computation)
+                solves = calls("cv2.solvePnP").found(code_of(t).reachable(functions_read(t)))
                 look = from_code("look at what cv2.solvePnP is given (the corners as found, the object points, K "
-                                 "and dist as they are)") if calls("cv2.solvePnP").found(
-                    code_of(t).reachable(functions_read(t))) else "look at how the pose is computed from the corners"
+                                 "and dist as they are)") if solves else \
+                    measured("look at how the pose is computed from the corners")
                 return partial(0.5, measured(
                     f"{what}: the corners returned are your pose's own projection, but they miss the corners by up "
                     f"to {missed}: the pose is near ({off}) but not as exact as cv2.solvePnP gives from the "
