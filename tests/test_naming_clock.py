@@ -179,3 +179,27 @@ def test_a_slower_machine_s_seconds_count_as_fewer_of_the_budget_s(monkeypatch):
     assert 0.18 <= cpu.used() < 0.3
     # (the budget's 0.8 s left, WALL_SLACK times as long in wall time on a busy machine, at this pace)
     assert 0.7 * naming.WALL_SLACK * 2 < cpu.wall_left() <= 0.82 * naming.WALL_SLACK * 2
+
+
+def test_a_grading_s_naming_time_grows_with_the_student_s_own_time_up_to_twice():
+    """A submission whose own loops are slow takes that long to pass: its naming may take as much more."""
+    from types import SimpleNamespace
+
+    def trial(own: float):
+        return SimpleNamespace(sandbox=SimpleNamespace(student_seconds=own))
+
+    assert naming.grading_seconds(trial(0.0)) == naming.GRADING_SECONDS
+    assert naming.grading_seconds(trial(4.0)) == naming.GRADING_SECONDS + 4.0
+    assert naming.grading_seconds(trial(1000.0)) == 2 * naming.GRADING_SECONDS
+    assert naming.grading_seconds(SimpleNamespace()) == naming.GRADING_SECONDS   # (no sandbox: the base time)
+
+
+def test_a_clock_draws_on_its_spare_time_only_as_far_as_needed_and_given():
+    clock = naming.Clock(1.0)
+    clock.spare = 2.0
+    clock.draw_on_spare(0.5)           # (enough left already: nothing drawn)
+    assert clock.seconds == 1.0 and clock.spare == 2.0
+    clock.draw_on_spare(2.5)
+    assert 2.4 < clock.left() <= 2.5 and clock.spare < 0.6
+    clock.draw_on_spare(10.0)          # (no more than the spare)
+    assert clock.spare == 0.0 and clock.seconds == 3.0

@@ -5635,3 +5635,24 @@ def test_a_calibration_option_is_offered_its_removal_not_another_option():
     changes = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
     assert ("drop_keyword", "flags") in changes
     assert not any(operator == "flag" and str(payload).startswith("CALIB_") for operator, payload in changes)
+
+
+def test_a_check_replayed_says_nothing_of_a_change_when_the_repairs_time_stops_a_call():
+    """A replay cut short by the repairs' own clock is no failure of the check: a slow function's change,
+    right, is not refuted by a grading's other check for want of time (a Python scanline DP)."""
+    from types import SimpleNamespace
+
+    from autograder.sandbox.supervisor import CallOutcome
+
+    def replayed(wall_left: float):
+        companion = SimpleNamespace(call_variant=lambda *a, **k: CallOutcome(ok=False, kind="timeout", message="slow"))
+        variants = SimpleNamespace(companion=companion, clock=SimpleNamespace(wall_left=lambda: wall_left),
+                                   trial=SimpleNamespace(sandbox=None))
+        return repair._Replayed(variants, "def f(): pass")
+
+    short = replayed(0.5)
+    short.call("m", "f", (), timeout=30.0)
+    assert short.cut_short   # (stopped at the 0.5 s the repairs had left, not at the check's 30)
+    own_limit = replayed(60.0)
+    own_limit.call("m", "f", (), timeout=30.0)
+    assert not own_limit.cut_short   # (the check's own limit: the variant is as slow as that, a failure)

@@ -828,6 +828,7 @@ class Clock:
     def __init__(self, seconds: float, processes=None):
         self.pace = machine_pace()   # (measured before the clock starts: its measure is no naming's work)
         self.seconds, self.started = seconds, time.monotonic()
+        self.spare = 0.0   # seconds of the grading's budget this clock may draw on (:meth:`draw_on_spare`)
         self._processes = processes
         self._thread = time.thread_time()
         self._cpu: dict[int, list[float]] = {}         # pid -> [CPU seconds when first seen, last seen]
@@ -863,6 +864,13 @@ class Clock:
     def left(self) -> float:
         return self.seconds - self.used()
 
+    def draw_on_spare(self, needed: float) -> None:
+        """Have ``needed`` seconds left, as far as :attr:`spare` allows: a change found late in a slow
+        function's search is confirmed with the grading's time left, not lost for want of its check's."""
+        drawn = min(self.spare, max(0.0, needed - self.left()))
+        self.seconds += drawn
+        self.spare -= drawn
+
     def wall_left(self) -> float:
         """Wall-clock seconds a call started now may take: the CPU seconds left take up to WALL_SLACK times
         as long on a busy machine (a timeout of CPU seconds would cut the reference's confirmation answers
@@ -886,6 +894,15 @@ def work_clock(trial, seconds: float) -> Clock:
     return Clock(seconds, processes if working is not None else None)
 
 
+def grading_seconds(trial) -> float:
+    """One grading's time for naming its failures: :data:`GRADING_SECONDS`, and as much again as the
+    student's own calls have taken so far, up to that again. A submission whose own loops are slow (a
+    scanline DP in Python) takes that long to pass, and its changes as long to confirm: failing
+    everything still costs about twice what passing does at most."""
+    own = getattr(getattr(trial, "sandbox", None), "student_seconds", 0.0) or 0.0
+    return GRADING_SECONDS + min(GRADING_SECONDS, own / machine_pace())
+
+
 def name_failure(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
     """The confirmed mutant that explains the failing trial's answers, or None.
 
@@ -904,7 +921,7 @@ def _within_budget(trial, seconds: float, work, evidence=None) -> Naming | None:
     if model is None or not (trial.calls if evidence is None else evidence):
         return None
     spent = trial.sandbox.shared.setdefault(SPENT, [0.0])
-    seconds = min(seconds, GRADING_SECONDS - spent[0])
+    seconds = min(seconds, grading_seconds(trial) - spent[0])
     if seconds <= 0.2:
         return None
     clock = work_clock(trial, seconds)

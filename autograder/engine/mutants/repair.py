@@ -2245,17 +2245,20 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = No
     raised = naming.raised_answer(trial.raised[3]) if getattr(trial, "raised", None) else None
     if raised is not None and naming.error_kind(raised)[0] in naming.NO_MUTANT_RAISES:
         return None   # a name undefined (a notebook cell that raised), an import: no change of a value mends it
-    # One time per grading for naming by mutants and by repairs (naming.GRADING_SECONDS): what
-    # failing everything costs stays bounded as it was.
+    # One time per grading for naming by mutants and by repairs (naming.grading_seconds): what
+    # failing everything costs stays bounded by what passing costs.
     spent = trial.sandbox.shared.setdefault(naming.SPENT, [0.0])
     # A slow function (a pipeline on photographs) needs more than the check's time for the confirmation of a
     # change found (its reference and the change run on every confirmation input): that time is added to the
     # check's, as measured on this machine's own calls (a slower machine's calls take longer, its names alike).
     seconds += min(seconds, max(0.0, _confirming_seconds(trial) - RESERVE))
-    seconds = min(seconds, naming.GRADING_SECONDS - spent[0])
+    seconds = min(seconds, naming.grading_seconds(trial) - spent[0])
     if seconds <= 0.2:
         return None
     clock = naming.work_clock(trial, seconds)
+    # (the search stays within the check's time; the confirmation of a change it found may take the
+    # grading's time left too -- a Python loop's variants run as slowly as the student's own calls)
+    clock.spare = max(0.0, naming.grading_seconds(trial) - spent[0] - seconds)
     try:
         student = _student_code(trial)
         if student is None:
@@ -3042,6 +3045,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
                                      student.copies_an_item(pair[0]), student.departs_from_reference(pair[0]),
                                      _inside_a_dropped_term(pair[1], dropped),
                                      pair[1].operator in REMOVALS, pair[1].size, pair[1].written))
+    if shown:
+        clock.draw_on_spare(confirming)
     for mutant, fix in shown:
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
@@ -3709,7 +3714,8 @@ class _Variants:
         source = self.source(mutant)
         if source is None or self.clock.left() <= 0:
             return False
-        replayed = _ReplayedTrial(_Replayed(self, source), check, self.trial.forbid, self.trial.inputs, examples)
+        sandbox = _Replayed(self, source)
+        replayed = _ReplayedTrial(sandbox, check, self.trial.forbid, self.trial.inputs, examples)
         replayed.forbidden_allowed = getattr(self.trial, "forbidden_allowed", False)
         try:
             verdict = check.func(replayed)
@@ -3717,6 +3723,8 @@ class _Variants:
             return None
         except Exception:  # noqa: BLE001 - a failed check, the variant's exception, a call out of time
             verdict = Verdict(0.0)
+        if sandbox.cut_short:
+            return None   # (the repairs' time ran out in a call: the check says nothing of the variant)
         # (a call of the function that raised is a call too: the check fails by the variant's exception --
         # `not rank != 8` refuses the exact pairs the student's own code fitted)
         raised = getattr(replayed, "raised", None)
@@ -4248,14 +4256,17 @@ class _Replayed:
         self.variants, self.source = variants, source
         self.shared: dict = {}
         self.submission_dir = getattr(variants.trial.sandbox, "submission_dir", None)
+        self.cut_short = False   # a call stopped by the repairs' time, not by the check's own limit
 
     def call(self, module, function, args=(), kwargs=None, *, timeout, forbid=()):
         from ...sandbox.supervisor import CallOutcome
 
+        left = self.variants.clock.wall_left()
         outcome = self.variants.companion.call_variant(
             module, self.source, function, [(tuple(args), dict(kwargs or {}))], forbid=forbid,
-            timeout=max(0.05, min(timeout or np.inf, self.variants.clock.wall_left())))
+            timeout=max(0.05, min(timeout or np.inf, left)))
         if not outcome.ok:
+            self.cut_short |= outcome.kind == "timeout" and left < (timeout or np.inf)
             return outcome
         value = outcome.value[0] if isinstance(outcome.value, list) and len(outcome.value) == 1 else None
         if isinstance(value, dict) and "__error__" in value:
