@@ -33,6 +33,8 @@ from datetime import datetime, timezone
 from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from typing import Callable, Sequence
 
+import numpy as np
+
 from .. import __version__
 from ..loading.notebooks import point_into_notebook
 from ..loading.parsing import PARSE_LOCK
@@ -937,7 +939,8 @@ def _looked_besides_forbidden(verdict: Verdict, sandbox: Sandbox, check: Check, 
     trial = Trial(_SharedApart(sandbox), check, rules, inputs)
     trial.forbidden_allowed = True
     try:
-        again = check.func(trial)
+        with np.errstate(all="ignore"):
+            again = check.func(trial)
     except Fail as failure:
         # (and where in their code, as for any failed check: the library's result reshaped where it is
         # transposed is a mistake of its own, which writing the step themselves would not mend)
@@ -1017,7 +1020,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     started = time.perf_counter()
     tb, student_failure = "", ""
     try:
-        verdict = check.func(trial)
+        with np.errstate(all="ignore"):   # (the check's arithmetic on a student's NaN or inf: judged, not warned of)
+            verdict = check.func(trial)
         if verdict is None:
             verdict = Verdict(1.0)
         elif not isinstance(verdict, Verdict):
@@ -1149,7 +1153,8 @@ def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None, inputs=Non
     started = time.perf_counter()
     status, message, hint = PASSED, "", ""
     try:
-        check.func(trial)
+        with np.errstate(all="ignore"):
+            check.func(trial)
     except StudentFailure as failure:  # the graded checks report the student's failure
         if failure.outcome.kind == "not_implemented":
             status, message = NOT_IMPLEMENTED, failure.message

@@ -3718,7 +3718,8 @@ class _Variants:
         replayed = _ReplayedTrial(sandbox, check, self.trial.forbid, self.trial.inputs, examples)
         replayed.forbidden_allowed = getattr(self.trial, "forbidden_allowed", False)
         try:
-            verdict = check.func(replayed)
+            with np.errstate(all="ignore"):   # (as the runner runs a check: a variant's NaN judged, not warned of)
+                verdict = check.func(replayed)
         except _NotReplayed:
             return None
         except Exception:  # noqa: BLE001 - a failed check, the variant's exception, a call out of time
