@@ -614,12 +614,10 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     blank = blank_canvas(got, image if image.ndim == 3 else cv2.cvtColor(image, cv2.COLOR_GRAY2BGR), away)
     if blank:
         t.fail(f"{what}: {blank}.", hint=BLANK_CANVAS_HINT.said(t, ["draw_epipolar_lines"]), mistake=BLANK_CANVAS)
-    swapped_lines = np.asarray(lines, float)[:, [1, 0, 2]]
-    swapped_coverage, swapped_stray, _ = draw_judgement(got, image, swapped_lines)
-    if swapped_coverage.min() >= min_coverage and swapped_stray <= 0.05:
-        t.fail(f"{what} is wrong: the lines are drawn with x and y swapped "
-               "(a line (a, b, c) is a*x + b*y + c = 0 with x the column)",
-               mistake="the lines are drawn with x and y swapped")
+    for moved, said, mistake in _lines_elsewhere(np.asarray(lines, float).reshape(-1, 3), height, width):
+        moved_coverage, moved_stray, _ = draw_judgement(got, image, moved)
+        if moved_coverage.min() >= min_coverage and moved_stray <= 0.05:
+            t.fail(f"{what} is wrong: {said}", mistake=mistake)
     if stray <= 0.05 and coverage.max() < min_coverage and coverage.mean() > 0.15:
         t.fail(f"{what}: the lines are in the right place but stop short "
                f"(only {coverage.mean():.0%} of their length inside the image is drawn): "
@@ -643,6 +641,25 @@ def judge_drawing(t: Trial, what: str, got, image, lines, min_coverage=0.9):
     t.fail(f"{what}: {np.sum(coverage < min_coverage)} of {len(coverage)} lines are missing or "
            f"incomplete, and {stray:.0%} of the changed pixels are away from every line "
            "(see the picture)")
+
+
+def _lines_elsewhere(lines, height: int, width: int) -> list:
+    """The lines as a drawing that places each point elsewhere draws them, with what it says and its name:
+    x and y swapped; y counted up from the bottom row (a maths plot's axes, ``h - 1 - y``); x counted from the
+    right. A line a x + b y + c = 0 drawn at (x, h - 1 - y) is a x - b y + (c + b (h - 1)) = 0."""
+    a, b, c = lines.T
+    return [
+        (lines[:, [1, 0, 2]], "the lines are drawn with x and y swapped (a line (a, b, c) is a*x + b*y + c = 0 with "
+         "x the column)", "the lines are drawn with x and y swapped"),
+        (np.column_stack([a, -b, c + b * (height - 1)]), measured(
+            "the lines are drawn upside down: every line is where it would be with y counted up from the bottom row "
+            "(a point (x, y) drawn at (x, h - 1 - y)); in an image y is the row, counted down from the top"),
+         "the lines are drawn upside down (y counted from the bottom)"),
+        (np.column_stack([-a, b, c + a * (width - 1)]), measured(
+            "the lines are drawn mirrored left to right: every line is where it would be with x counted from the right "
+            "border (a point (x, y) drawn at (w - 1 - x, y)); x is the column, counted from the left"),
+         "the lines are drawn mirrored left to right"),
+    ]
 
 
 WRAPPED_INDICES = "negative pixel indices wrap round (a line's part outside the image drawn at the far side)"

@@ -513,6 +513,16 @@ MISTAKES = {
                     cv2.circle(out, (int(round(y)), int(round(x))), int(radius), tuple(color), -1)
             return out
         """, ["(y, x)"]),
+    # (a maths plot's y axis: the row counted up from the bottom)
+    "circles upside down (y from the bottom row)": ("lab09.ex5", """
+        def draw_points(image, pts, radius=3, color=(0, 0, 255)):
+            out = image.copy()
+            height = out.shape[0]
+            for x, y in np.asarray(pts, float).reshape(-1, 2):
+                if np.isfinite(x) and np.isfinite(y):
+                    cv2.circle(out, (int(round(x)), int(round(height - 1 - y))), int(radius), tuple(color), -1)
+            return out
+        """, ["upside down"]),
     "wrong calibration object points": ("lab09.ext1", """
         _right = calibrate
         def calibrate(images, pattern_size, square_size):

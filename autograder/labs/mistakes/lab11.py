@@ -585,6 +585,11 @@ MISTAKES = {
         def draw_epipolar_lines(image, lines):
             return _draw(image, np.asarray(lines, float)[:, [1, 0, 2]])
         """, ["x and y swapped"]),
+    # (the blind set 06e's 11/03: each end point drawn at (x, h - 1 - y), a maths plot's y axis)
+    "draw upside down (y from the bottom row)": ("lab11.ex2", reference_def_with(
+        "lab11_two_view", "draw_epipolar_lines", "cv2.line(canvas, p, q, colour, 1, cv2.LINE_8)",
+        "cv2.line(canvas, (p[0], height - 1 - p[1]), (q[0], height - 1 - q[1]), colour, 1, cv2.LINE_8)"),
+        ["upside down"]),
     # ---------------------------------------------------------------- ex3
     # the blind sets 1129c's 11/03 and 1201d's 11/04: np.matmul given three matrices (the third is `out`)
     "essential by np.matmul of three matrices": ("lab11.ex3", """
