@@ -201,6 +201,21 @@ def test_an_axis_wrong_before_a_slice_is_followed_back_to_where_it_went_wrong():
         in sentence, sentence
 
 
+def test_a_row_of_an_array_with_its_axes_exchanged_is_followed_back_to_where_it_was_made():
+    """`result[0]` of `np.array([x, y])` for one point (the blind set 2026-12-06f's 09/01): (2, 1) where (1, 2) gives
+    the (2,) asked -- the index is right, the array it reads was stacked the other way round."""
+    sentence = shape_sentence("""
+        def project(p):
+            p = np.atleast_2d(p)
+            x, y = p[:, 0] / p[:, 2], p[:, 1] / p[:, 2]
+            result = np.array([x, y])
+            return result[0]
+        """, "project", (2,), np.array([1.0, 2.0, 4.0]))
+    assert "`np.array([x, y])` (line 5) makes the shape (2, 1)" in sentence, sentence
+    assert "its two axes are exchanged (the transpose of the (1, 2) asked)" in sentence, sentence
+    assert "`result[0]`" not in sentence, sentence
+
+
 def test_an_array_made_without_the_values_last_axis_is_named_where_it_was_made():
     sentence = raised_sentence("""
         def paste(image):

@@ -1090,6 +1090,13 @@ def explain_shape(code, recording: Recording, function: str, got: tuple, expecte
         if same:
             node = same[0]
             continue
+        # (a row taken from an operand whose two axes are exchanged: `result[0]` of a (2, 1) `result`, where its
+        # (1, 2) would give the (2,) asked -- the layout came with the operand, followed there)
+        source = recording.shape(node.value) if isinstance(node, ast.Subscript) and _integer(node.slice) else None
+        if source is not None and len(source) == 2 and source[0] != source[1] \
+                and (source[1],) == tuple(got) and (source[0],) == tuple(expected):
+            node, got, expected = node.value, source, source[::-1]
+            continue
         # (an operand that already has the wrong sizes on every axis that is wrong, the others changed here:
         # `X[:, :3]` of an (4, 4) X, where (N, 3) is asked -- the wrong axis came with X, followed there)
         wrong = [i for i, (g, e) in enumerate(zip(got, expected)) if g != e] if len(got) == len(expected) else []
@@ -1196,6 +1203,13 @@ def _stack_transposed(fn, arrays, line: int) -> str:
     return ""
 
 
+def _integer(index) -> bool:
+    """Whether an index is one whole number written out (`x[0]`, `x[-1]`)."""
+    if isinstance(index, ast.UnaryOp) and isinstance(index.op, ast.USub):
+        index = index.operand
+    return isinstance(index, ast.Constant) and type(index.value) is int
+
+
 def _bounded_where_short(index, source, expected) -> bool:
     """Whether the index gives each axis the source is short on a slice with an end (`[:h, :w]`), as a crop
     written for a larger array does; a whole axis (`:`) kept as it came crops nothing there."""
@@ -1230,6 +1244,8 @@ def _made_here(fn, recording, node, statement, got, expected) -> Form | None:
         # (measured: the recording's shapes, each (N,), and the (N, k) asked)
         said += measured(": NumPy joins (N,) arrays end to end; as the columns of an (N, k) array they go side by "
                          "side (np.column_stack)")
+    if len(got) == 2 and got[0] != got[1] and tuple(got) == tuple(expected)[::-1]:
+        said += measured(f": its two axes are exchanged (the transpose of the {_shape_text(expected)} asked)")
     said += _stack_transposed(fn, arrays, line)
     source = arrays[0][1]
     if isinstance(node, ast.Subscript) and len(arrays) == 1 and len(got) == len(expected) == len(source) \
