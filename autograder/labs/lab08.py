@@ -1692,6 +1692,21 @@ def ransac_minimal_set(t):
     return passed(f"{error:.2g} px RMS from the true H, all 4 pairs inliers")
 
 
+@ex4.advice("homography_ransac returns its inlier mask as bool, the API's type")
+def ransac_mask_type(t):
+    # (the graded checks read a 0/1 mask as a mask -- cv2.findHomography's own is uint8 -- so no points depend on it)
+    src, dst, _, _ = truth.ransac_problem(10, 100, 0.3, 1.0)
+    got = t.call("homography_ransac", src, dst, seed=0)
+    inliers = got[1] if isinstance(got, (tuple, list)) and len(got) == 2 else None
+    if isinstance(inliers, np.ndarray) and inliers.shape == (len(src),) and inliers.dtype.kind in "iu" \
+            and set(np.unique(inliers).tolist()) <= {0, 1}:
+        t.advise(f"homography_ransac(src, dst) returns its inliers as {inliers.dtype} 0s and 1s (what "
+                 "cv2.findHomography's mask holds), where the API's mask is bool. The checks read it as a mask, so "
+                 "no points depend on it; but used as an index a 0/1 integer array picks rows 0 and 1: src[inliers] "
+                 "is copies of the first two pairs, not the inliers.",
+                 hint="Return the mask as bool: mask.ravel().astype(bool) (or mask.ravel() == 1).")
+
+
 @ex4.check("homography_ransac with 30% outliers: the inlier mask", points=2)
 def ransac_mask(t):
     src, dst, H_true, true_inliers = truth.ransac_problem(10, 100, 0.3, 1.0)

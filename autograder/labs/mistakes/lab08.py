@@ -1401,4 +1401,10 @@ ADVICE = {
             return (points1[[m.queryIdx for m in good]].reshape(-1, 2),
                     points2[[m.trainIdx for m in good]].reshape(-1, 2))
         """, ["NORM_L2 by default", "hamming"]),
+    # (the blind set 2026-12-06f's 08/05: cv2.findHomography's mask flattened, never made bool)
+    "RANSAC inlier mask returned as cv2.findHomography's uint8 0/1": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, mask = cv2.findHomography(np.float32(src), np.float32(dst), cv2.RANSAC, threshold)
+            return H / H[2, 2], mask.ravel()
+        """, ["uint8 0s and 1s", "bool", "no points"]),
 }
