@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import ast
 import functools
+import re
 from collections import Counter
 from dataclasses import replace
 from typing import Callable
@@ -1694,19 +1695,7 @@ def ransac_minimal_set(t):
     return passed(f"{error:.2g} px RMS from the true H, all 4 pairs inliers")
 
 
-@ex4.advice("homography_ransac returns its inlier mask as bool, the API's type")
-def ransac_mask_type(t):
-    # (the graded checks read a 0/1 mask as a mask -- cv2.findHomography's own is uint8 -- so no points depend on it)
-    src, dst, _, _ = truth.ransac_problem(10, 100, 0.3, 1.0)
-    got = t.call("homography_ransac", src, dst, seed=0)
-    inliers = got[1] if isinstance(got, (tuple, list)) and len(got) == 2 else None
-    if isinstance(inliers, np.ndarray) and inliers.shape == (len(src),) and inliers.dtype.kind in "iu" \
-            and set(np.unique(inliers).tolist()) <= {0, 1}:
-        t.advise(f"homography_ransac(src, dst) returns its inliers as {inliers.dtype} 0s and 1s (what "
-                 "cv2.findHomography's mask holds), where the API's mask is bool. The checks read it as a mask, so "
-                 "no points depend on it; but used as an index a 0/1 integer array picks rows 0 and 1: src[inliers] "
-                 "is copies of the first two pairs, not the inliers.",
-                 hint="Return the mask as bool: mask.ravel().astype(bool) (or mask.ravel() == 1).")
+MASK_OF_INTEGERS = "the inlier mask is 0/1 integers, not bool"
 
 
 @ex4.check("homography_ransac with 30% outliers: the inlier mask", points=2)
@@ -1716,6 +1705,15 @@ def ransac_mask(t):
     H, inliers = ransac_result(t, src, dst, what, seed=0)
     _, recall, precision = ransac_success(H, inliers, H_true, true_inliers)
     if recall >= 0.93 and precision >= 0.95:
+        given = t.calls[-1][3][1] if t.calls and isinstance(t.calls[-1][3], (tuple, list)) else None
+        if isinstance(given, np.ndarray) and given.dtype.kind in "iu":
+            # (the API's mask is bool: 0/1 integers -- cv2.findHomography's mask flattened -- used as an index
+            # pick rows 0 and 1; the other checks read them as a mask)
+            return partial(0.5, f"{what}: the mask marks the right pairs, but as {given.dtype} 0s and 1s (what "
+                                "cv2.findHomography's mask holds), where the API's mask is bool: used as an index, "
+                                "src[inliers] picks rows 0 and 1 over and over, not the inliers.",
+                           hint="Return the mask as bool: mask.ravel().astype(bool) (or mask.ravel() == 1).",
+                           mistake=MASK_OF_INTEGERS)
         return passed(f"{recall:.0%} of the true inliers found, {precision:.0%} of the marked "
                       "ones are true inliers")
     diagnose_ransac(t, what, H, inliers, src, dst, H_true, true_inliers)
@@ -2846,9 +2844,16 @@ SECOND_WARP_PLACE_HINT = Hint(
 IN_STEP = 0.9   # correlation with the truth's pixels above which a region is the truth made brighter or darker
 
 
+def _inverts_a_homography(function) -> bool:
+    """An inversion (np.linalg.inv, pinv) of a value named as a homography (`H`, `H21`, `homography`), not of a
+    normalising transform or a shift (`T2`): a RANSAC helper's `inv(T2)` is no H inverted."""
+    return any(isinstance(node, ast.Call) and ast.unparse(node.func).split(".")[-1] in ("inv", "pinv") and node.args
+               and re.search(r"H|homograph", ast.unparse(node.args[0])) is not None for node in ast.walk(function))
+
+
 INVERSE_SECOND_WARP = guard(
     "img2 was warped with the inverse homography: use the H that maps img2's pixels onto img1's (match img2 -> "
-    "img1, or invert)", asks=calls_any("np.linalg.inv", "np.linalg.pinv", says="inverts a matrix"),
+    "img1, or invert)", asks=Predicate("inverts a homography", _inverts_a_homography),
     instead="img2 was warped with the inverse homography (the one mapping img1 onto img2): your code {found}, so "
             "look at which H is inverted, and at the direction of the matches (img2 -> img1)")
 # The shift on the left of H, and no product with H on the left: T @ H written, H @ T not.

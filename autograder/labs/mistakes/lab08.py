@@ -1357,6 +1357,12 @@ MISTAKES = {
                 return homography_dlt(src, dst), np.ones(n, dtype=bool)
             return homography_dlt(src[best], dst[best]), best
         """, ["two separate random draws", "draw the indices once and take both with them"]),
+    # (the blind sets 2026-12-06f's and 06g's 08/05: cv2.findHomography's mask flattened, never made bool)
+    "RANSAC inlier mask returned as cv2.findHomography's uint8 0/1": ("lab08.ex4", """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            H, mask = cv2.findHomography(np.float32(src), np.float32(dst), cv2.RANSAC, threshold)
+            return H / H[2, 2], mask.ravel()
+        """, ["uint8 0s and 1s", "bool"]),
 }
 
 
@@ -1401,10 +1407,4 @@ ADVICE = {
             return (points1[[m.queryIdx for m in good]].reshape(-1, 2),
                     points2[[m.trainIdx for m in good]].reshape(-1, 2))
         """, ["NORM_L2 by default", "hamming"]),
-    # (the blind set 2026-12-06f's 08/05: cv2.findHomography's mask flattened, never made bool)
-    "RANSAC inlier mask returned as cv2.findHomography's uint8 0/1": ("lab08.ex4", """
-        def homography_ransac(src, dst, threshold=3.0, seed=None):
-            H, mask = cv2.findHomography(np.float32(src), np.float32(dst), cv2.RANSAC, threshold)
-            return H / H[2, 2], mask.ravel()
-        """, ["uint8 0s and 1s", "bool", "no points"]),
 }
