@@ -571,6 +571,12 @@ MISTAKES = {
             k1, k2, p1, p2, k3 = dist
             return _right(points, [k1, k2, p2, p1, k3])
         """, ["p1 and p2 are swapped"]),
+    # (the blind set 2026-12-06g's 09/05: the textbook's order k1, k2, k3 first)
+    "dist unpacked as (k1, k2, k3, p1, p2)": ("lab09.ext2", reference_def_with(
+        "lab09_camera", "distort_points",
+        "k1, k2, p1, p2, k3 = (list(np.asarray(dist, dtype=np.float64).ravel()) + [0.0] * 5)[:5]",
+        "k1, k2, k3, p1, p2 = (list(np.asarray(dist, dtype=np.float64).ravel()) + [0.0] * 5)[:5]"),
+        ["unpacked as (k1, k2, k3, p1, p2)"]),
     "points off the image left out": ("lab09.ex5", """
         _right = project_onto_image
         def project_onto_image(image, P, points):
