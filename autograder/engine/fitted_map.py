@@ -116,7 +116,7 @@ def told(fitted, asked, source) -> str:
     if mine is not None and theirs is not None:
         parts = []
         if abs(mine[0] - theirs[0]) > 0.5:
-            parts.append(f"rotated by {mine[0]:.0f} degrees where {theirs[0]:.0f} is asked")
+            parts.append(f"rotated by {_degrees(mine[0])} degrees where {_degrees(theirs[0])} is asked")
         if abs(mine[1] - theirs[1]) > 0.01 * theirs[1]:
             parts.append(f"scaled by {mine[1]:.2f} where {theirs[1]:.2f} is asked")
         if parts:
@@ -124,3 +124,9 @@ def told(fitted, asked, source) -> str:
     rows = "; ".join("[" + ", ".join(f"{v:.3g}" for v in row) + "]" for row in fitted)
     asked_rows = "; ".join("[" + ", ".join(f"{v:.3g}" for v in row) + "]" for row in asked)
     return f"warped by the affine map [{rows}], where [{asked_rows}] is asked"
+
+
+def _degrees(angle: float) -> str:
+    """An angle fitted to a picture, to the degree -- and to a tenth below 10 degrees: 90 taken as radians is 1.6,
+    not 2."""
+    return f"{angle:.0f}" if abs(angle) >= 10 else f"{angle:.1f}"
