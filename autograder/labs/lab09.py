@@ -563,7 +563,7 @@ def pinhole_behind(t):
 @ex1.advice("NaN for points behind the camera")
 def pinhole_behind_nan(t):
     what, X, behind = pinhole_behind_case()
-    advise_nan_behind(t, what, t.call("pinhole_project", X, 300.0), behind)
+    advise_nan_behind(t, what, t.call("pinhole_project", X, 300.0), behind, truth.pinhole(X, 300.0))
 
 
 # ================================================================== ex2 intrinsics
@@ -630,7 +630,7 @@ def project_intrinsics_behind(t):
 @ex2.advice("NaN for points behind the camera")
 def project_intrinsics_behind_nan(t):
     what, K, X, behind = intrinsics_behind_case()
-    advise_nan_behind(t, what, t.call("project_with_intrinsics", K, X), behind)
+    advise_nan_behind(t, what, t.call("project_with_intrinsics", K, X), behind, truth.homogeneous_project(K, X))
 
 
 # ================================================================== ex3 full camera
@@ -754,7 +754,7 @@ def project_behind(t):
 @ex3.advice("NaN for points behind the camera")
 def project_behind_nan(t):
     what, P, X, behind = project_behind_case()
-    advise_nan_behind(t, what, t.call("project", P, X), behind)
+    advise_nan_behind(t, what, t.call("project", P, X), behind, truth.homogeneous_project(P, X))
 
 
 # ================================================================== ex4 focal length, aperture

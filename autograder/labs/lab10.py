@@ -378,7 +378,7 @@ def perspective_behind(t):
     _, X, behind = perspective_behind_case()
     got = t.call("perspective_project", X, 500.0)
     if isinstance(got, np.ndarray) and got.dtype.kind == "f":
-        advise_nan_behind(t, "perspective_project(points with some Z <= 0, f=500)", got, behind)
+        advise_nan_behind(t, "perspective_project(points with some Z <= 0, f=500)", got, behind, truth.pinhole(X, 500.0))
 
 
 # ================================================================== ex2 weak perspective

@@ -7449,6 +7449,14 @@ def _copies_of(name: str, words, line: int) -> set:
     return found
 
 
+def _made_from_since(words: _Words, other: str, name: str, line: int) -> bool:
+    """Whether ``other``'s last value before ``line`` reads ``name`` and was made after ``name``'s own last value."""
+    given = [at for at, _, _ in words.definitions.get(name, ()) if at < line]
+    last = [d for d in words.definitions.get(other, ()) if d[0] < line]
+    return bool(given and last) and last[-1][0] > given[-1] \
+        and any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(last[-1][1]))
+
+
 def _name_changes(node: ast.Name, words: _Words, what, line):
     if node.id in ("np", "cv2", "math", "None", "True", "False"):
         return
@@ -7504,7 +7512,11 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     # (first of all, a name written in the other case: `Z`, a point's own depth, where `z`, the common one,
     # belongs)
     related = words.related(line) if words.student else frozenset()
-    others.sort(key=lambda pair: (pair[0] not in unread, pair[0].lower() != node.id.lower(), pair[0] not in together,
+    # (and, in the student's code, a value made from this name since it was last given -- `b = prev ^ g` for `g`,
+    # the Gray bit converted to binary: the conversion made for this use, the raw value read instead; tried first)
+    converted = {other for other, _ in others if words.student and _made_from_since(words, other, node.id, line)}
+    others.sort(key=lambda pair: (pair[0] not in unread, pair[0] not in converted,
+                                  pair[0].lower() != node.id.lower(), pair[0] not in together,
                                   not twin_names(node.id, pair[0]),
                                   not _derived_names(node.id, pair[0]) and not _one_stem(node.id, pair[0]),
                                   not (pair[0] in related and (pair[0] in params) == kind),
