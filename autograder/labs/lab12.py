@@ -81,8 +81,9 @@ def _xor(function) -> bool:
 XORS = (Predicate("computes an XOR", _xor) | calls("np.bitwise_xor") | calls("np.logical_xor")).saying(
     "computes an XOR")
 guard(truth.PLAIN_BINARY_DECODE, asks=XORS,
-      instead="the patterns are decoded as plain binary: your code {found}, so check that it turns the Gray code "
-              "into binary (b_0 = g_0, b_i = b_(i-1) XOR g_i: b_(i-1), not g_(i-1)) before the stripe index is read")
+      instead="the patterns are decoded as plain binary: your code {found}, so check both steps: the Gray code turned "
+              "into binary (b_0 = g_0, b_i = b_(i-1) XOR g_i), and the stripe index read from those binary bits b, "
+              "not from the Gray bits g")
 
 MARGIN = 0.05   # bad-pixel rate accepted above the reference's on the same scene (DP, NCC)
 SLACK = 0.03    # block matching (SSD): accepted above the worst legitimate matcher's rate
