@@ -7514,7 +7514,9 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     related = words.related(line) if words.student else frozenset()
     # (and, in the student's code, a value made from this name since it was last given -- `b = prev ^ g` for `g`,
     # the Gray bit converted to binary: the conversion made for this use, the raw value read instead; tried first)
+    # (not one `derived_name` offers, beside a sibling read in that form: told as that)
     converted = {other for other, _ in others if words.student and _made_from_since(words, other, node.id, line)}
+    converted -= {name for _, name, _ in _raw_beside_derived(node, words)} if converted else set()
     others.sort(key=lambda pair: (pair[0] not in unread, pair[0] not in converted,
                                   pair[0].lower() != node.id.lower(), pair[0] not in together,
                                   not twin_names(node.id, pair[0]),
