@@ -5656,3 +5656,55 @@ def test_a_check_replayed_says_nothing_of_a_change_when_the_repairs_time_stops_a
     own_limit = replayed(60.0)
     own_limit.call("m", "f", (), timeout=30.0)
     assert not own_limit.cut_short   # (the check's own limit: the variant is as slow as that, a failure)
+
+
+_MOVED = {"dedent", "move", "indent", "hoist", "simultaneous"}
+
+
+def test_a_statement_moved_out_of_a_branch_the_failing_input_skips_is_run_where_the_branch_is():
+    """The float conversion written in the colour branch only (the blind set 2026-12-06h's 12/05): a grey input
+    never enters the `if`, yet moving its last statement out of it changes what that input runs."""
+    student, mutants = _read("""
+        import numpy as np
+
+        def graded(left, right):
+            left, right = np.asarray(left), np.asarray(right)
+            if left.ndim == 3:
+                left = left.mean(axis=2)
+                right = right.mean(axis=2)
+                right = right.astype(np.float64)
+            return np.abs(left - right)
+    """)
+    out = [m for m in mutants if m.operator == "dedent"]
+    assert out, [m.operator for m in mutants]
+    ran = {5, 6, 11}   # (the grey input's lines: the assignment, the test, the return)
+    assert all(student.runs(m, ran) for m in out)
+    inside = [m for m in mutants if m.operator not in _MOVED and student.fix(m) is not None
+              and student.fix(m).changes[0][0] in (7, 8, 9)]
+    assert inside and not any(student.runs(m, ran) for m in inside)   # (a change inside the branch still is not run)
+
+
+def test_a_conversion_the_code_makes_is_not_said_missing():
+    """'the result of `cv2.cvtColor` is not converted to float' is false of code converting it (06h 12/05)."""
+    from autograder.engine.mutants import naming
+
+    def fn(text):
+        return ast.parse(textwrap.dedent(text)).body[0]
+
+    converts = fn("""
+        def f(img):
+            grey = cv2.cvtColor(img, cv2.COLOR_BGR2GRAY)
+            grey = grey.astype(np.float64)
+            return grey
+    """)
+    wraps = fn("""
+        def f(img):
+            return np.float32(cv2.cvtColor(img, cv2.COLOR_BGR2GRAY))
+    """)
+    keeps = fn("""
+        def f(img):
+            grey = cv2.cvtColor(img, cv2.COLOR_BGR2GRAY)
+            return grey.astype(np.uint8) - 1
+    """)
+    assert naming._converts_result_of(converts, "cvtColor") and naming._converts_result_of(wraps, "cvtColor")
+    assert not naming._converts_result_of(keeps, "cvtColor")

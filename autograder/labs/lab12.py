@@ -2335,6 +2335,12 @@ def ncc_flat_border(t):
                         "denominator)."), mistake=FLAT_NAN)
     # (an NCC not normalised scores the blocks half in the border highest: that is its own mistake)
     name_ncc_normalisation(t, what)
+    # The border's blocks win over the real matches only where the map without the border found them: where it
+    # is wrong there too (the views swapped, the search turned round), the other checks say why, not this one.
+    truth_there = np.where(reach, np.asarray(scene.disparity, np.float64), 0.0)
+    if truth.bad_pixel_rate(plain, truth_there, scene.threshold) > 0.5:
+        t.fail(f"{message}; without the border your map is wrong there too (see the other checks of "
+               "block_matching).")
     t.fail(measured(f"{message}: the blocks in and at the border, with little or no texture, win over the real "
                     "matches."))
 

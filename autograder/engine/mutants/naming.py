@@ -1421,6 +1421,9 @@ def _code_can(naming: Naming, trial, called) -> bool:
     # code lacks by that very mistake)
     if any(short not in called_names for _, short in quoted if short in _mutant_calls(trial, naming.mutant)):
         return False
+    if naming.mutant.operator == "drop_conversion" and any(_converts_result_of(fn, short) for fn in functions
+                                                           for _, short in quoted):
+        return False   # (`the result of cv2.cvtColor is not converted` said of code that converts it: 06h 12/05)
     if naming.mutant.operator == "other_name" and len(naming.mutant.edits) == 1:
         used = naming.mutant.edits[0][3]
         makers = {short for _, short in quoted}
@@ -1591,6 +1594,31 @@ def _mutant_calls(trial, mutant) -> set:
     except (ValueError, SyntaxError):
         return set()
     return {_short(n) for n in ast.walk(changed) if isinstance(n, ast.Call)}
+
+
+_FLOAT_WORDS = re.compile(r"float|\bf[48]\b|\bdouble\b")
+
+
+def _converts_result_of(function, short: str) -> bool:
+    """Whether ``function`` converts to float what a call of ``short`` returns: the call itself, or a name given
+    its result, inside `x.astype(float...)`, `np.float32(x)`, `np.asarray(x, float...)` or `np.array(x, ...)`."""
+    given = {t.id for node in ast.walk(function) if isinstance(node, ast.Assign) and isinstance(node.value, ast.Call)
+             and _short(node.value) == short for t in node.targets if isinstance(t, ast.Name)}
+
+    def made_by_it(node) -> bool:
+        return (isinstance(node, ast.Call) and _short(node) == short) or (isinstance(node, ast.Name) and node.id in given)
+
+    for node in ast.walk(function):
+        if not isinstance(node, ast.Call):
+            continue
+        name, text = _short(node), ast.unparse(node)
+        if name == "astype" and isinstance(node.func, ast.Attribute) and made_by_it(node.func.value) \
+                and _FLOAT_WORDS.search(ast.unparse(node.args[0]) if node.args else text):
+            return True
+        if node.args and made_by_it(node.args[0]) and (name.startswith("float")
+                                                        or name in ("asarray", "array") and _FLOAT_WORDS.search(text)):
+            return True
+    return False
 
 
 def _short(call) -> str:

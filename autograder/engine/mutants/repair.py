@@ -699,8 +699,19 @@ class _Student:
         if lines is None:
             return True
         fix = self.fix(mutant)
-        return fix is None or all(self._statement_of(edit[0], change[0]) in lines
+        return fix is None or all((self._block_of(edit[0], change[0]) if edit[2] == "dedent" else
+                                   self._statement_of(edit[0], change[0])) in lines
                                   for edit, change in zip(mutant.edits, fix.changes))
+
+    def _block_of(self, where: str, line: int) -> int:
+        """The first line of the `if` or loop whose body holds the statement at ``line``: a statement moved out of
+        it runs where the block does (a conversion written in the colour branch only, which the grey input that
+        failed never enters), else the statement's own."""
+        fn = self._defs.get(where)
+        for block in (ast.walk(fn) if fn is not None else ()):
+            if isinstance(block, (ast.If, ast.For, ast.While)) and any(s.lineno == line for s in block.body):
+                return self._statement_of(where, block.lineno)
+        return self._statement_of(where, line)
 
     def ran_here(self, function: str, lines) -> set | None:
         """``lines`` when they hold the first statement of ``function`` (the file the sandbox ran
