@@ -181,17 +181,18 @@ def test_a_slower_machine_s_seconds_count_as_fewer_of_the_budget_s(monkeypatch):
     assert 0.7 * naming.WALL_SLACK * 2 < cpu.wall_left() <= 0.82 * naming.WALL_SLACK * 2
 
 
-def test_a_grading_s_naming_time_grows_with_the_student_s_own_time_up_to_twice():
-    """A submission whose own loops are slow takes that long to pass: its naming may take as much more."""
+def test_a_slow_submission_s_found_change_may_take_as_long_again_as_its_calls_to_confirm():
+    """A submission whose own loops are slow takes that long to pass: confirming a change found in it may take as
+    much more, up to the grading's naming time again; a search finding nothing is not given it."""
     from types import SimpleNamespace
 
     def trial(own: float):
         return SimpleNamespace(sandbox=SimpleNamespace(student_seconds=own))
 
-    assert naming.grading_seconds(trial(0.0)) == naming.GRADING_SECONDS
-    assert naming.grading_seconds(trial(4.0)) == naming.GRADING_SECONDS + 4.0
-    assert naming.grading_seconds(trial(1000.0)) == 2 * naming.GRADING_SECONDS
-    assert naming.grading_seconds(SimpleNamespace()) == naming.GRADING_SECONDS   # (no sandbox: the base time)
+    assert naming.confirming_extra(trial(0.0)) == 0.0
+    assert naming.confirming_extra(trial(4.0)) == 4.0
+    assert naming.confirming_extra(trial(1000.0)) == naming.GRADING_SECONDS
+    assert naming.confirming_extra(SimpleNamespace()) == 0.0   # (no sandbox: nothing more)
 
 
 def test_a_clock_draws_on_its_spare_time_only_as_far_as_needed_and_given():

@@ -894,13 +894,13 @@ def work_clock(trial, seconds: float) -> Clock:
     return Clock(seconds, processes if working is not None else None)
 
 
-def grading_seconds(trial) -> float:
-    """One grading's time for naming its failures: :data:`GRADING_SECONDS`, and as much again as the
-    student's own calls have taken so far, up to that again. A submission whose own loops are slow (a
-    scanline DP in Python) takes that long to pass, and its changes as long to confirm: failing
-    everything still costs about twice what passing does at most."""
+def confirming_extra(trial) -> float:
+    """Time a grading may add, beyond :data:`GRADING_SECONDS`, to confirm a change already found: as much as the
+    student's own calls have taken so far in it, up to :data:`GRADING_SECONDS` again. A submission whose own loops
+    are slow (a scanline DP in Python) takes that long to pass, and a change of it as long to confirm; a search
+    that finds nothing stops within the grading's time, as before."""
     own = getattr(getattr(trial, "sandbox", None), "student_seconds", 0.0) or 0.0
-    return GRADING_SECONDS + min(GRADING_SECONDS, own / machine_pace())
+    return min(GRADING_SECONDS, own / machine_pace())
 
 
 def name_failure(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
@@ -921,7 +921,7 @@ def _within_budget(trial, seconds: float, work, evidence=None) -> Naming | None:
     if model is None or not (trial.calls if evidence is None else evidence):
         return None
     spent = trial.sandbox.shared.setdefault(SPENT, [0.0])
-    seconds = min(seconds, grading_seconds(trial) - spent[0])
+    seconds = min(seconds, GRADING_SECONDS - spent[0])
     if seconds <= 0.2:
         return None
     clock = work_clock(trial, seconds)
