@@ -1709,10 +1709,10 @@ def ransac_mask(t):
         if isinstance(given, np.ndarray) and given.dtype.kind in "iu":
             # (the API's mask is bool: 0/1 integers -- cv2.findHomography's mask flattened -- used as an index
             # pick rows 0 and 1; the other checks read them as a mask)
-            return partial(0.5, f"{what}: the mask marks the right pairs, but as {given.dtype} 0s and 1s (what "
-                                "cv2.findHomography's mask holds), where the API's mask is bool: used as an index, "
-                                "src[inliers] picks rows 0 and 1 over and over, not the inliers.",
-                           hint="Return the mask as bool: mask.ravel().astype(bool) (or mask.ravel() == 1).",
+            return partial(0.5, measured(f"{what}: the mask marks the right pairs, but as {given.dtype} 0s and 1s "
+                                         "(what cv2.findHomography's mask holds), where the API's mask is bool: used as "
+                                         "an index, src[inliers] picks rows 0 and 1 over and over, not the inliers. "
+                                         "Return the mask as bool: mask.ravel().astype(bool) (or mask.ravel() == 1)."),
                            mistake=MASK_OF_INTEGERS)
         return passed(f"{recall:.0%} of the true inliers found, {precision:.0%} of the marked "
                       "ones are true inliers")
@@ -2845,10 +2845,11 @@ IN_STEP = 0.9   # correlation with the truth's pixels above which a region is th
 
 
 def _inverts_a_homography(function) -> bool:
-    """An inversion (np.linalg.inv, pinv) of a value named as a homography (`H`, `H21`, `homography`), not of a
-    normalising transform or a shift (`T2`): a RANSAC helper's `inv(T2)` is no H inverted."""
+    """An inversion (np.linalg.inv, pinv) of anything but a normalising transform, a shift or a camera matrix named so
+    (`T2`, `K`, `T_norm`): a RANSAC helper's `inv(T2)` is no H inverted; `inv(pairwise(img2, img1))` is."""
     return any(isinstance(node, ast.Call) and ast.unparse(node.func).split(".")[-1] in ("inv", "pinv") and node.args
-               and re.search(r"H|homograph", ast.unparse(node.args[0])) is not None for node in ast.walk(function))
+               and re.fullmatch(r"T\w*|K\w*|\w*(norm|shift|scale)\w*", ast.unparse(node.args[0])) is None
+               for node in ast.walk(function))
 
 
 INVERSE_SECOND_WARP = guard(

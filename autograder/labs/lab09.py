@@ -1308,17 +1308,18 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     pts = np.asarray(pts, float).reshape(-1, 2)
     height, width = image.shape[:2]
     for moved, said, mistake in (
-            (pts[:, ::-1], "the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = (column, row).",
-             "x and y (column and row) are swapped"),
+            (pts[:, ::-1], measured("the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = "
+                                    "(column, row)."), "x and y (column and row) are swapped"),
             (np.column_stack([pts[:, 0], height - 1 - pts[:, 1]]),
-             "the circles are drawn upside down, at (x, h - 1 - y): y counted up from the bottom row as in a plot; in "
-             "an image y is the row, counted down from the top.", "the points are drawn upside down (y from the bottom)"),
+             measured("the circles are drawn upside down, at (x, h - 1 - y): y counted up from the bottom row as in a "
+                      "plot; in an image y is the row, counted down from the top."),
+             "the points are drawn upside down (y from the bottom)"),
             (np.column_stack([width - 1 - pts[:, 0], pts[:, 1]]),
-             "the circles are drawn mirrored, at (w - 1 - x, y): x is the column, counted from the left border.",
-             "the points are drawn mirrored left to right")):
+             measured("the circles are drawn mirrored, at (w - 1 - x, y): x is the column, counted from the left "
+                      "border."), "the points are drawn mirrored left to right")):
         moved_core, _ = truth.circle_regions(image.shape, moved, radius)
         if moved_core.any() and painted[moved_core].mean() > 0.9 and not (painted[core].mean() > 0.9):
-            t.fail(f"{what}: " + measured(said), mistake=mistake)
+            t.fail(f"{what}: {said}", mistake=mistake)
     if got.ndim == 3 and core.any():
         # (a colour the call left to a default of their own is that default, neither reversed nor ignored:
         # the default is named after the check, from their def)
