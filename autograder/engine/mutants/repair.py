@@ -320,6 +320,7 @@ class _Student:
         self._novel: dict = {}       # function -> the places of its statements the reference writes nowhere
         self._extra: dict = {}       # (def, ordinal) -> whether taking that statement out removes a step of the student's own
         self._statements: dict = {}   # def -> line -> the first line of the statement holding it
+        self._blocks: dict = {}       # def -> a body statement's first line -> the first line of its if or loop
         self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
         self._shapes: dict = {}      # id of a statement (kept alive in _walked) -> its code with names masked
         self._places: dict = {}      # id of a node (kept alive in _walked) -> (its statement, its position there)
@@ -707,11 +708,11 @@ class _Student:
         """The first line of the `if` or loop whose body holds the statement at ``line``: a statement moved out of
         it runs where the block does (a conversion written in the colour branch only, which the grey input that
         failed never enters), else the statement's own."""
-        fn = self._defs.get(where)
-        for block in (ast.walk(fn) if fn is not None else ()):
-            if isinstance(block, (ast.If, ast.For, ast.While)) and any(s.lineno == line for s in block.body):
-                return self._statement_of(where, block.lineno)
-        return self._statement_of(where, line)
+        if where not in self._blocks:   # (read once per def: a long function's many moves stay linear)
+            fn = self._defs.get(where)
+            self._blocks[where] = {s.lineno: block.lineno for block in (ast.walk(fn) if fn is not None else ())
+                                   if isinstance(block, (ast.If, ast.For, ast.While)) for s in block.body}
+        return self._statement_of(where, self._blocks[where].get(line, line))
 
     def ran_here(self, function: str, lines) -> set | None:
         """``lines`` when they hold the first statement of ``function`` (the file the sandbox ran
