@@ -49,3 +49,21 @@ def test_a_warp_sized_rows_first_is_told_in_grading(tmp_path):
     messages = [c.message for c in check_results(result, "lab07.ex5") if not c.passed]
     assert any("width and height are swapped" in m and "passes `(h, w)` (rows, columns) to cv2.warpAffine" in m
                for m in messages), messages
+
+
+def test_a_size_read_rows_first_leaves_no_guess_from_the_lengths(tmp_path):
+    # (06i: a check comparing shapes guessed "stacked along another axis, or transposed?" beside the call
+    # read in the code; the call is the cause, told alone)
+    source = textwrap.dedent("""
+        def translate(image, tx=100, ty=50):
+            h, w = image.shape[:2]
+            M = np.float32([[1, 0, tx], [0, 1, ty]])
+            return cv2.warpAffine(image, M, (h, w))
+        """)
+    result = grade(mutant(tmp_path, "lab07_transformations", source), ["lab07.ex1"], pictures="none")
+    failing = [c for c in check_results(result, "lab07.ex1") if not c.passed]
+    assert len(failing) >= 3
+    for check in failing:
+        assert check.mistake == "width and height are swapped", (check.name, check.mistake)
+        assert "passes `(h, w)` (rows, columns) to cv2.warpAffine" in check.message, check.message
+        assert "transposed?" not in check.message and "another axis" not in check.message, check.message

@@ -514,11 +514,15 @@ class Trial:
                               f"{misread[0]}", mistake=misread[1])
                 form = shape_form(value.shape, tuple(shape))
                 also = _kind_too(value, dtype, kind)
+                swapped = self._why_swapped(value.shape, shape).removeprefix("; ")
+                if swapped:   # (the call read in the code is the cause: no guess from the lengths beside it)
+                    self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
+                              f"width and height are swapped (shapes are (rows, columns), OpenCV's sizes are "
+                              f"(width, height)): {swapped}{also}", mistake=SIZE_SWAPPED)
                 if form is not None:
                     self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
-                              f"{form.sentence}{self._why_swapped(value.shape, shape)}{also}", mistake=form.mistake)
-                self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}"
-                          + self._why_swapped(value.shape, shape) + also)
+                              f"{form.sentence}{also}", mistake=form.mistake)
+                self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}{also}")
         if dtype is not None and value.dtype != np.dtype(dtype):
             canvas = _hints().float_canvas(self) if np.dtype(dtype) == np.uint8 and value.dtype.kind == "f" else ""
             if canvas:   # (the array returned was made float by NumPy's default dtype: read, the cause)
@@ -837,6 +841,7 @@ def _has_fraction(values: np.ndarray) -> bool:
 
 
 ARRAYS_HELD = "a tuple or list of arrays returned where one array is asked"
+SIZE_SWAPPED = "width and height are swapped"   # an image (W, H) for (H, W): a size given rows first
 
 
 def _arrays_held(value, shape) -> str:

@@ -31,7 +31,7 @@ import numpy as np
 from fixtures.images import as_homography, coverage, warp
 
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed, integer_entries
-from .checks import StudentFailure, Trial, Verdict, fingerprint, partial, passed
+from .checks import SIZE_SWAPPED, StudentFailure, Trial, Verdict, fingerprint, partial, passed
 from .claims import calls_any, checklist, from_code, measured, seen_in_code, where_to_look
 from .forms import (CHANNEL_COPIED, CHANNELS_FIRST, COLOURS_LOST, UNIT_RANGE_CAST, channel_copied, colours_lost, shape_form,
                     unit_range_cast)
@@ -515,7 +515,7 @@ def judge_warp(t: Trial, what: str, got, source, M, mistakes=None, dsize=None, s
             read = size_given_as_shape(code_of(t), functions_read(t))
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "
                    "width and height are swapped (shapes are (rows, columns), dsize is (width, height))"
-                   + (f": your code {read}" if read else ""), mistake="width and height are swapped")
+                   + (f": your code {read}" if read else ""), mistake=SIZE_SWAPPED)
         if got.shape[:2] == expected_shape[:2]:
             form = shape_form(got.shape, expected_shape)   # grey in, grey out, or BGR in, BGR out
             t.fail(f"{what} returned shape {got.shape}; expected {expected_shape}: "

@@ -1039,6 +1039,13 @@ def _unpack_pose(t: Trial, what, got, n_corners):
     return rvec, tvec, reprojected
 
 
+AXES_EXCHANGED = "the board's x and y axes are exchanged (turned by 90 degrees in its plane)"
+OBJECT_XY_EXCHANGED = "the object points' x and y are exchanged (the board turned over about its diagonal)"
+OBJECT_XY_HINT = Hint(
+    "that is the pose of object points whose x and y are exchanged; x runs along a row of corners, fastest: "
+    "np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).", asks=OBJECT_POINTS_ROW_BY_ROW,
+    instead="that is the pose of object points whose x and y are exchanged, though your code {found}: check "
+            "the corners' order and what reaches cv2.solvePnP.")
 PATTERN_AXES_HINT = Hint(
     "passed to cv2.findChessboardCorners as given, and the object points run row by row with x "
     "fastest: np.mgrid[0:cols, 0:rows].T.reshape(-1, 2).", asks=OBJECT_POINTS_ROW_BY_ROW,
@@ -1193,14 +1200,22 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
 
 
 def fail_if_axes_exchanged(t: Trial, what: str, R_got, R) -> None:
-    """Fail naming the board's x and y axes exchanged: the plane right, the pose turned by 90 degrees in it."""
-    normal_angle = np.degrees(np.arccos(np.clip(abs(R_got[:, 2] @ R[:, 2]), -1.0, 1.0)))
+    """Fail naming the board's x and y axes exchanged: the plane right, the pose turned by 90 degrees in it
+    (pattern_size read as (rows, cols): the corners found in another order), or turned over about its diagonal,
+    its normal reversed (the object points' x and y exchanged: a reflection, which a rotation makes proper by
+    turning z round)."""
+    facing = float(R_got[:, 2] @ R[:, 2])
+    normal_angle = np.degrees(np.arccos(np.clip(abs(facing), -1.0, 1.0)))
     in_plane = np.degrees(np.arccos(np.clip(abs(R_got[:, 0] @ R[:, 0]), -1.0, 1.0)))
-    if normal_angle < 2.0 and abs(in_plane - 90.0) < 2.0:
+    if normal_angle >= 2.0 or abs(in_plane - 90.0) >= 2.0:
+        return
+    if facing > 0:
         t.fail(f"{what}: the board plane is right but its x and y axes are exchanged (the pose is turned "
                "by 90 degrees in the board plane): pattern_size is (cols, rows) = (inner corners per row, "
                "per column), " + PATTERN_AXES_HINT.said(t),
-               mistake="pattern_size's cols and rows are exchanged")
+               mistake=AXES_EXCHANGED)
+    t.fail(f"{what}: the board plane is right but the board is turned over about its diagonal (its x and y axes "
+           "exchanged, its z axis reversed): " + OBJECT_XY_HINT.said(t), mistake=OBJECT_XY_EXCHANGED)
 
 
 def _wrong_grids_explaining(rvec, tvec, pattern, square, corners, K, dist) -> list:

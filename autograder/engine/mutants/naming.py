@@ -1449,7 +1449,7 @@ def _written_alike(mutant, trial, functions) -> bool:
     model = model_for(trial.lab) if hasattr(trial, "lab") else None
     if model is None:
         return True
-    made = [m for m in (_mutated_expression(model.source, edit) for edit in mutant.edits) if m is not None]
+    made = [m for m in (_expression_of_edit(model.source, edit) for edit in mutant.edits) if m is not None]
     if not made:
         return True
     sizes = _sizes(functions)   # (only carriers about the expression's size are written out: linear)
@@ -1476,6 +1476,16 @@ def _sizes(functions) -> dict:
         for node in reversed(order):   # (breadth-first reversed: every child comes before its parent)
             sizes[id(node)] = 1 + sum(sizes.get(id(child), 0) for child in ast.iter_child_nodes(node))
     return sizes
+
+
+def _expression_of_edit(source: str, edit) -> tuple | None:
+    """:func:`_mutated_expression`, cached where the edit can be a key (a payload holding a list -- the names an
+    operator moves -- is made each time)."""
+    try:
+        hash(edit)
+    except TypeError:
+        return _mutated_expression.__wrapped__(source, edit)
+    return _mutated_expression(source, edit)
 
 
 @functools.lru_cache(maxsize=1024)

@@ -424,6 +424,19 @@ MISTAKES = {
         def estimate_pose(image, pattern_size, square_size, K, dist=None):
             return _right(image, pattern_size[::-1], square_size, K, dist)
         """, ["(cols, rows)"]),
+    # the blind set 1206i's 10/06: the board turned over about its diagonal, not turned in its plane
+    "pose with the object points' x and y exchanged": ("lab10.ex6", """
+        def estimate_pose(image, pattern_size, square_size, K, dist=None):
+            grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+            cols, rows = pattern_size
+            found, corners = cv2.findChessboardCorners(grey, (cols, rows))
+            if not found:
+                return np.full(3, np.nan), np.full(3, np.nan), np.zeros((0, 2))
+            board = np.array([[i * square_size, j * square_size, 0.0] for i in range(rows) for j in range(cols)])
+            _, rvec, tvec = cv2.solvePnP(board, corners, np.asarray(K, float), dist)
+            reprojected, _ = cv2.projectPoints(board, rvec, tvec, np.asarray(K, float), dist)
+            return rvec.ravel(), tvec.ravel(), reprojected.reshape(-1, 2)
+        """, ["turned over about its diagonal", "x and y are exchanged", "np.mgrid[0:cols, 0:rows]"]),
     # the blind set 1203b's 10/06 (and 29e's 07/04 in warp_affine): the size reversed before it is cut to two
     "undistort by remap with the size taken from the reversed shape": ("lab10.ext1", """
         def undistort_image(image, K, dist):

@@ -144,6 +144,10 @@ MISTAKES = {
         "grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img2.ndim == 3 else img2",
         "grey2 = cv2.cvtColor(img2, cv2.COLOR_BGR2GRAY) if img1.ndim == 3 else img2"),
         ["BGR img1, grey img2", "img2.ndim == 3"]),
+    # the blind set 1206i's 11/06: F's mask never applied, the matches returned whole (RANSAC's outliers kept)
+    "two_view_reconstruction keeping the outliers of F": ("lab11.ex6", reference_def_with(
+        "lab11_two_view", "two_view_reconstruction", "pts1, pts2 = pts1[inliers], pts2[inliers]", "pass"),
+        ["lie more than 5 px from the epipolar lines of the F returned", "outliers"]),
     # the blind set 1205b's 11/02: a steep line's end points each given the other border's row
     "draw_epipolar_lines pairing a steep line's end points with the wrong rows": ("lab11.ex2", reference_def_with(
         "lab11_two_view", "draw_epipolar_lines", "p, q = (-c / a, 0.0), (-(c + b * (height - 1)) / a, height - 1.0)",
