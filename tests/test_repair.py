@@ -5708,3 +5708,36 @@ def test_a_conversion_the_code_makes_is_not_said_missing():
     """)
     assert naming._converts_result_of(converts, "cvtColor") and naming._converts_result_of(wraps, "cvtColor")
     assert not naming._converts_result_of(keeps, "cvtColor")
+
+
+@pytest.mark.parametrize("text, converts", [
+    ("left, right = _grey_float(left), _grey_float(right)", True),      # a helper of the student's returning float
+    ("left = left.astype(np.float32)", True),
+    ("cost = np.zeros((h, w), dtype=np.float64)", True),
+    ("left = np.float32(left)", True),
+    ("left = cv2.cvtColor(left, cv2.COLOR_BGR2GRAY)", False),
+    ("e2 /= np.linalg.norm(e2)", False),
+    ("left = _grey(left)", False),                                      # a helper that keeps the dtype
+])
+def test_a_step_added_is_said_to_make_floats_only_where_it_does(text, converts):
+    defs = {fn.name: fn for fn in ast.parse(textwrap.dedent("""
+        def _grey_float(image):
+            image = np.asarray(image)
+            return image.astype(np.float64)
+        def _grey(image):
+            return cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+    """)).body}
+    assert repair._makes_float(text, defs) is converts
+
+
+def test_a_float_conversion_missing_from_a_dp_is_told_with_why_it_mends(tmp_path):
+    # (06i 12/03: the repair's step `left, right = (_grey_float(left), _grey_float(right))` was the only name of
+    # uint8 differences wrapping around)
+    from autograder.labs.mistakes import reference_def_with
+
+    source = reference_def_with("lab12_stereo", "dp_stereo", "left, right = _grey_float(left), _grey_float(right)",
+                                "if left.ndim == 3:\n    left = cv2.cvtColor(left, cv2.COLOR_BGR2GRAY)\n"
+                                "if right.ndim == 3:\n    right = cv2.cvtColor(right, cv2.COLOR_BGR2GRAY)")
+    result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex5"], pictures="none", include_hidden=False)
+    messages = [c.message for c in check_results(result, "lab12.ex5") if c.score < c.max_score]
+    assert any("adding the step" in m and "_grey_float(left)" in m and "wraps around" in m for m in messages), messages

@@ -305,6 +305,39 @@ def _disconnects(before, after, helpers_changed=frozenset(), own=frozenset()) ->
     return bool((feeding & assigned & _live(before)) - _live(after))
 
 
+_FLOAT_DTYPES = {"float", "float32", "float64", "np.float32", "np.float64", "numpy.float32", "numpy.float64",
+                 "np.double", "np.single", "np.float_", "'float32'", "'float64'", "'float'", "cv2.CV_32F", "cv2.CV_64F"}
+# (why a conversion mends: told where the step added makes float arrays -- uint8 images subtracted, squared, averaged)
+_FLOAT_WHY = (": it makes the arrays float -- arithmetic on uint8 images wraps around (10 - 20 gives 246) and "
+              "rounds every result to a whole number")
+
+
+def _makes_float(text: str, defs: dict) -> bool:
+    """Whether the statement ``text`` converts to float: an ``astype``, ``np.float32(...)`` and the like, or a call
+    of a def of the student's (``defs``) whose returns do (one call deep)."""
+    try:
+        statement = ast.parse(text)
+    except (SyntaxError, ValueError, RecursionError):
+        return False
+
+    def converts(node) -> bool:
+        for call in (n for n in ast.walk(node) if isinstance(n, ast.Call)):
+            name = ast.unparse(call.func)
+            if name in _FLOAT_DTYPES:
+                return True
+            if name.endswith(".astype") and call.args and ast.unparse(call.args[0]) in _FLOAT_DTYPES:
+                return True
+            if any(k.arg == "dtype" and ast.unparse(k.value) in _FLOAT_DTYPES for k in call.keywords):
+                return True
+        return False
+
+    if converts(statement):
+        return True
+    called = {ast.unparse(n.func) for n in ast.walk(statement) if isinstance(n, ast.Call)}
+    return any(converts(r.value) for name in called if name in defs
+               for r in ast.walk(defs[name]) if isinstance(r, ast.Return) and r.value is not None)
+
+
 class _Student:
     """The student's module read once: its tree, the operators' changes per API function, and each
     change shown (made lazily, for the functions that fail: showing every change of a long module
@@ -1531,7 +1564,8 @@ class _Student:
                           "to just after it",
                 "hoist": f"moving `{shown}` (line {line}{{inside}}) out of the {block} of line {edited.lineno}, to "
                          "just before it (made at each turn, the array keeps only the last turn's item)",
-                "add_step": f"adding the step `{shown}` right after line {line}{{inside}}"}[operator]
+                "add_step": f"adding the step `{shown}` right after line {line}{{inside}}"
+                            + (_FLOAT_WHY if _makes_float(text, self._defs) else "")}[operator]
         return Fix(((line, text, said),), where, operator, mutant.edits)
 
     def shown(self, edit) -> tuple[int, str, str] | None:
