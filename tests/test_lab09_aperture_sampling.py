@@ -47,7 +47,11 @@ WRONG = {
     "half a turn": (polar(np.sqrt, angle_high=np.pi), "only half of the blur disc"),
     "angles of whole radians": (whole_radians(), "along a few directions only"),
     "one random number": (np.repeat(np.random.default_rng(4).uniform(-0.7, 0.7, (N, RAYS, 1)), 2, axis=2),
-                          "on one line"),
+                          "made from the same random numbers"),
+    "cos used for both coordinates": (polar(np.sqrt)[..., [0, 0]], "made from the same random numbers"),
+    # (one angle drawn for every ray, a radius per ray: one direction, not x = y)
+    "an angle drawn once": (np.sqrt(np.random.default_rng(6).uniform(0, 1, (N, RAYS, 1)))
+                            * [np.cos(1.1), np.sin(1.1)], "one angle for all the rays"),
 }
 
 

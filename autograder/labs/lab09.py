@@ -1063,8 +1063,13 @@ def aperture_sampling(offsets) -> str:
         return measured("every ray lands on the rim of the blur disc: the aperture point's radius is always the "
                         "aperture's, never drawn (uniform over the disc: radius aperture * sqrt(u))")
     if abs(np.corrcoef(u[:, 0], u[:, 1])[0, 1]) > 0.99:
-        return "the rays lie on one line through the ideal projection: both coordinates of the aperture " \
-               "point come from the same random numbers"
+        # (x = y, or x = -y: one number for both coordinates -- cos used twice, one draw for x and y; a line at
+        # another angle: one direction for every ray -- an angle drawn once, not one per ray: audit of 2026-12-06)
+        diagonal = np.median(np.abs(np.abs(u[:, 0]) - np.abs(u[:, 1])) / np.maximum(r, 1e-300)) < 1e-6
+        return measured("the rays lie on one line through the ideal projection: " + (
+            "both coordinates of the aperture point are made from the same random numbers (x = +-y)" if diagonal else
+            "every ray's aperture point lies in the same direction, one angle for all the rays (an angle drawn once, "
+            "not one per ray)"))
     for axis, name in ((0, "x"), (1, "y")):   # a half disc's mean is 4 / (3 pi) radii off its centre
         side = np.mean(u[:, axis] > 0)
         if (side < 0.005 or side > 0.995) and r.max() <= 1.02 and abs(abs(u[:, axis].mean()) - 4 / (3 * np.pi)) < 0.03:
@@ -2133,8 +2138,12 @@ def judge_calibration(t: Trial, images, K_true, pattern, square=truth.CALIBRATIO
                   "or for another pattern_size)."),
                hint="" if ordered else OBJECT_POINTS_HINT.said(t), mistake="" if ordered else OBJECT_POINTS_ORDER)
     if np.abs(K[:2, 2] - K_true[1::-1, 2]).max() < 3.0 and c_error.max() > 3.0:
-        t.fail(f"{what}: the principal point is swapped (cx, cy): did you pass the image size as "
-               "(rows, cols)? OpenCV wants (width, height).", mistake="the principal point is swapped")
+        # (the image size given rows first does not do it -- cv2.calibrateCamera only starts from it -- the corners'
+        # x and y exchanged, or the view transposed, do: audit of 2026-12-06)
+        t.fail(measured(f"{what}: the principal point is swapped: ({K[0, 2]:.1f}, {K[1, 2]:.1f}) where "
+                        f"({K_true[0, 2]:.1f}, {K_true[1, 2]:.1f}) is asked, x and y exchanged between the image points "
+                        "and the image: the corners cv2.findChessboardCorners gives are (x, y) = (column, row), of "
+                        "the view as it is"), mistake="the principal point is swapped")
     if f_error.max() > 0.015 or c_error.max() > 3.0:
         fail_if_calibrated_at_another_scale(t, what, K, K_true)
         looped = (call_in_a_loop(code_of(t).reachable(["calibrate"]), ("calibrateCamera",)) or ("", 0))[1]

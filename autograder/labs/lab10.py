@@ -1443,9 +1443,12 @@ ext1 = lab.exercise("ext1", "Extension: undistortion", functions=["undistort_ima
 UNDISTORT_TOLERANCE = 6.0
 
 
+# (an image returned unchanged by code that passes dist to cv2.undistort: its answer dropped, a copy made before the
+# call returned, an early return -- not "dist is not used": audit of 2026-12-06)
 DIST_TO_UNDISTORT_HINT = Hint(
-    " (cv2.undistort(image, K, dist)).", asks=DIST_TO_UNDISTORT,
-    instead=": your code {found}, but not the dist given (None or zeros?).")
+    ": dist is not used (cv2.undistort(image, K, dist)).", asks=DIST_TO_UNDISTORT,
+    instead=": your code {found}, yet it returns the input as it was: check that the image returned is "
+            "cv2.undistort's answer, and that the dist given is the one passed (not None or zeros).")
 
 
 def undistorted(t: Trial, what: str, image, expected, seen: str, dist=None):
@@ -1492,8 +1495,8 @@ def undistort_check(t):
     if renamed:
         return renamed
     if blurred_difference(got, distorted, valid) <= 1.0:
-        t.fail(f"{what} returned the image unchanged: dist is not used" + DIST_TO_UNDISTORT_HINT.said(t),
-               mistake="the image is returned unchanged (dist is not used)")
+        t.fail(f"{what} returned the image unchanged" + DIST_TO_UNDISTORT_HINT.said(t),
+               mistake="the image is returned unchanged")
     mistake = name_mistake(t, got, undistortion_mistakes(distorted, K, dist),
                            lambda a, b: blurred_difference(a, b, valid), UNDISTORT_TOLERANCE, truth=clean,
                            probe=undistort_probe(t))

@@ -39,6 +39,10 @@ MISTAKES = {
         "if seed is not None:\n"
         "    rng = np.random.default_rng(seed)"), ["assigns `rng` (line", "under `seed is not None`"]),
     # the blind set 1205b's 09/06: each point drawn in a colour of its own (a colour map of depth), not the default red
+    # the audit of 2026-12-06: corners taken as (row, column) swap K's principal point (the size given rows first does not)
+    "calibrate taking the corners as (row, column)": ("lab09.ext1", reference_def_with(
+        "lab09_camera", "calibrate", "image_points.append(corners)", "image_points.append(corners[..., ::-1].copy())"),
+        ["the principal point is swapped", "(x, y) = (column, row)"]),
     # the blind set 1205h's 09/06: cv2.calibrateCamera's order kept for the API's (K, dist, rms)
     "calibrate returning its results in OpenCV's order (rms first)": ("lab09.ext1", reference_def_with(
         "lab09_camera", "calibrate", "return K, dist.ravel()[:5], float(rms)",

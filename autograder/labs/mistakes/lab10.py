@@ -424,6 +424,13 @@ MISTAKES = {
         def estimate_pose(image, pattern_size, square_size, K, dist=None):
             return _right(image, pattern_size[::-1], square_size, K, dist)
         """, ["(cols, rows)"]),
+    # the audit of 2026-12-06: cv2.undistort called with dist, its answer dropped (not "dist is not used")
+    "undistort returning its input, cv2.undistort's answer dropped": ("lab10.ext1", reference_def_with(
+        "lab10_camera2", "undistort_image",
+        "return cv2.undistort(image, np.asarray(K, np.float64), np.asarray(dist, np.float64))",
+        "undistorted = cv2.undistort(image, np.asarray(K, np.float64), np.asarray(dist, np.float64))\n"
+        "return image.copy()"),
+        ["returned the image unchanged", "yet it returns the input as it was"]),
     # the blind set 1206i's 10/06: the board turned over about its diagonal, not turned in its plane
     "pose with the object points' x and y exchanged": ("lab10.ex6", """
         def estimate_pose(image, pattern_size, square_size, K, dist=None):
