@@ -611,7 +611,11 @@ def matched_points(t: Trial, what: str, result):
 
 
 SWAPPED = "pts1 and pts2 are swapped"
-SAME_IMAGE = "the matcher was fed the same image twice (img1 matched with itself)"
+# (pts1 == pts2 comes from img1 matched with itself and from both point sets read from img1's keypoints alike: audit
+# of 2026-12-06)
+SAME_IMAGE = "every match joins a point to the same position (pts1 == pts2)"
+SAME_IMAGE_WHY = ("the matcher fed the same image twice (img1 matched with itself), or both point sets read from "
+                  "img1's keypoints (kp1 and .queryIdx for pts2 too)")
 
 
 def same_image_twice(pts1, pts2) -> bool:
@@ -738,8 +742,7 @@ def judge_matches(t: Trial, what: str, img1, img2, H, result, min_matches: int, 
         return passed(f"{len(pts1)} matches, {fraction:.0%} agree with the true homography")
     if len(pts1) >= 4:
         if same_image_twice(pts1, pts2):
-            t.fail(f"{what}: {SAME_IMAGE}: every match joins a point to itself (pts1 == pts2)",
-                   mistake=SAME_IMAGE)
+            t.fail(f"{what}: {SAME_IMAGE}: {SAME_IMAGE_WHY}", mistake=SAME_IMAGE)
         if truth.consistent(np.linalg.inv(H), pts1, pts2).mean() >= min_fraction:
             t.fail(f"{what}: {SWAPPED}: pts1 must be the points in img1 "
                    "(queryIdx of a match of img1's descriptors against img2's)", mistake=SWAPPED)
@@ -784,8 +787,7 @@ def match_ratio(t):
         what = f"match_features(img1, img2, ratio={ratio})"
         pts1, pts2 = matched_points(t, what, t.call("match_features", img1, img2, ratio=ratio))
         if same_image_twice(pts1, pts2):
-            t.fail(f"{what}: {SAME_IMAGE}: every match joins a point to itself (pts1 == pts2)",
-                   mistake=SAME_IMAGE)
+            t.fail(f"{what}: {SAME_IMAGE}: {SAME_IMAGE_WHY}", mistake=SAME_IMAGE)
         if len(pts1) >= 10 and truth.consistent(np.linalg.inv(H), pts1, pts2).mean() >= 0.85:
             t.fail(f"{what}: {SWAPPED}: pts1 must be the points in img1", mistake=SWAPPED)
         counts[ratio] = len(pts1)
@@ -1448,11 +1450,22 @@ MISCOUNTED = guard("your loop keeps the model with the most inliers, yet what it
 def _keeps_the_best(t: Trial) -> bool:
     """Whether the student's RANSAC loop (in homography_ransac or a helper it runs) keeps a model when
     its count beats the best so far: an `if ... > ...:` (or `>=`, alone or within `or`/`and`: a tie
-    broken by the error) in a loop whose branch assigns."""
+    broken by the error) in a loop whose branch assigns; or the models the loop collected chosen by
+    `max(..., key=...)` or an argmax (a loop re-seeding its generator keeps the best of one sample drawn
+    again and again: audit of 2026-12-06)."""
     def ordering(test) -> bool:
         return any(isinstance(node, ast.Compare) and any(isinstance(op, (ast.Gt, ast.GtE, ast.Lt, ast.LtE))
                                                          for op in node.ops) for node in ast.walk(test))
+
+    def chooses_the_largest(node) -> bool:
+        if not isinstance(node, ast.Call):
+            return False
+        name = _path(node.func).rsplit(".", 1)[-1]
+        return (name == "max" and any(k.arg == "key" for k in node.keywords)) or name in ("argmax", "nanargmax")
     for function in code_of(t).reachable(["homography_ransac"]):
+        if any(isinstance(loop, (ast.For, ast.While)) for loop in ast.walk(function)) \
+                and any(chooses_the_largest(node) for node in ast.walk(function)):
+            return True
         for loop in ast.walk(function):
             if not isinstance(loop, (ast.For, ast.While)):
                 continue
@@ -3268,11 +3281,14 @@ def name_inverse_warp(t: Trial, judge: PanoramaJudge, what: str, images=None):
     images = [k for k in range(len(judge.scene.views)) if k != judge.reference] if images is None else images
     for k in images:
         if warped_with_inverse(judge, k) and inverse_on_probe(t):
-            mistake = (f"image {k + 1} was warped with the inverse homography: a pairwise H was not "
-                       "inverted on its way to the reference")
+            # (the chain goes the wrong way: an inversion missing or one too many, or matches given the other way
+            # round: the placement is the same -- audit of 2026-12-06)
+            mistake = (f"image {k + 1} was warped with the inverse homography: its chain to the reference goes the "
+                       "wrong way")
             judge.show(t, what)
-            t.fail(f"{what} (reference frame: image {judge.reference + 1}): {mistake} (for an image "
-                   "before the reference, H_k->ref = inv(H_ref->k)).", mistake=mistake)
+            t.fail(f"{what} (reference frame: image {judge.reference + 1}): {mistake} (H_k->ref maps image "
+                   f"{k + 1}'s pixels into the reference: look at which pairwise H are inverted, H_k->ref = "
+                   "inv(H_ref->k), and at the direction of each pair's matches).", mistake=mistake)
 
 
 def judge_many_content(t: Trial, judge: PanoramaJudge, what: str, per_step: bool = False):

@@ -306,8 +306,12 @@ def _diagnose_triangulation(t, what, got, views, P1, P2, pts1, pts2, noise):
     # Black-box test with the student's own function: does swapping the cameras back fix it?
     depth = np.linalg.norm(X - views.cam1.center, axis=1)
     allowed = at_precision(EXACT, magnitude(X) / depth.min()) if noise == 0 else 0.1
-    for args, mistake in (((P2, P1, pts1, pts2), "P1 and P2 are swapped"),
-                          ((P1, P2, pts2, pts1), "pts1 and pts2 are swapped")):
+    # (exchanging the cameras and exchanging the points build the same equations: either mends it, and either may
+    # be the slip -- the words say both; audit of 2026-12-06)
+    for args, mistake in (((P2, P1, pts1, pts2), "each camera is paired with the other image's points (P1 and P2, "
+                                                 "or pts1 and pts2, are swapped)"),
+                          ((P1, P2, pts2, pts1), "each camera is paired with the other image's points (P1 and P2, "
+                                                 "or pts1 and pts2, are swapped)")):
         try:
             other = np.asarray(t.call("triangulate", *args), dtype=float)
         except StudentFailure:
@@ -649,8 +653,9 @@ def _lines_elsewhere(lines, height: int, width: int) -> list:
     right. A line a x + b y + c = 0 drawn at (x, h - 1 - y) is a x - b y + (c + b (h - 1)) = 0."""
     a, b, c = lines.T
     return [
-        (lines[:, [1, 0, 2]], "the lines are drawn with x and y swapped (a line (a, b, c) is a*x + b*y + c = 0 with "
-         "x the column)", "the lines are drawn with x and y swapped"),
+        (lines[:, [1, 0, 2]], "the lines are drawn with x and y swapped, mirrored about the diagonal (x and y, or a "
+         "and b, exchanged: a line (a, b, c) is a*x + b*y + c = 0 with x the column)",
+         "the lines are drawn with x and y swapped"),
         (np.column_stack([a, -b, c + b * (height - 1)]), measured(
             "the lines are drawn upside down: every line is where it would be with y counted up from the bottom row "
             "(a point (x, y) drawn at (x, h - 1 - y)); in an image y is the row, counted down from the top"),
