@@ -1126,31 +1126,27 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
     worst = float(np.nanmax(dy)) if np.all(np.isfinite(dy)) else float("inf")
     if worst <= ROW_TOLERANCE:
         if np.median(dx) <= 0:
-            # Negative disparities: how the two maps turn the images tells the cause apart.
+            # Negative disparities: how the two maps turn the images tells the cause apart -- the images, not H's sign:
+            # H and -H are one homography (the API's "up to scale, sign included"), and e3 alone reversed is -1 times e1
+            # and e2 reversed (a half turn), e2 and e3 reversed -1 times e1 alone (a mirror): each pair is told together
+            # (audit of 2026-12-06: a student's H / H[2, 2] turned one name into the other).
             shape = np.asarray(pair.img_l).shape
-            (x1, y1, back1), (x2, y2, back2) = orientation(H1, shape), orientation(H2, shape)
+            (x1, y1, _), (x2, y2, _) = orientation(H1, shape), orientation(H2, shape)   # (flips: the same for -H)
             negative = (f"{what}: matches are on the same rows, but the disparities x_l - x_r are "
                         f"negative (median {np.median(dx):.3g} px)")
-            if back1 and back2 and np.linalg.det(np.asarray(H1, float)) < 0 and np.linalg.det(np.asarray(H2, float)) < 0:
-                # (K's and K_new's determinants are positive: the rectifying "rotation" is a reflection,
-                # its third axis alone reversed -- e1 and e2 right, the image turned half round)
-                t.fail(f"{negative}: the new cameras look away from the scene (each image's centre maps to a "
-                       "negative third coordinate), and each map is a reflection (negative determinant): the "
-                       "rectifying rotation's third axis alone points the opposite way.",
-                       mistake="the rectifying rotation's third axis points the opposite way (e3 = e2 x e1)",
-                       hint=THIRD_AXIS_HINT.said(t))
-            if back1 and back2:
-                t.fail(f"{negative}: the new cameras look away from the scene (each image's centre maps to a "
-                       "negative third coordinate), which mirrors both images: the rectifying rotation's "
-                       "second and third axes point the opposite way.",
-                       mistake="the rectifying rotation looks backwards: e2 and e3 point the opposite way",
-                       hint=CROSS_ORDER_HINT.said(t))
-            if x1 and x2 and not (back1 or back2):
+            if x1 and x2 and y1 and y2:
+                t.fail(f"{negative}: both rectified images are turned half round (mirrored in x and in y): the "
+                       "rectifying rotation's third axis alone points the opposite way (e3 = e2 x e1), or its first "
+                       "two axes do (the baseline taken the other way round) -- the same maps, a homography's sign "
+                       "aside.", mistake="the rectified images are turned half round (e3 alone, or e1 and e2, reversed)",
+                       hint=THIRD_AXIS_HINT.said(t) or TOWARDS_CENTRE_HINT.said(t))
+            if x1 and x2 and not (y1 or y2):
                 t.fail(f"{negative}: both rectified images are mirrored left to right with the new cameras "
-                       "facing the scene: the new x axis points from camera 2 to camera 1.",
-                       mistake="the new x axis points from camera 2 to camera 1 (the images are mirrored)",
-                       hint=TOWARDS_CENTRE_HINT.said(t))
-            if not (x1 or x2 or y1 or y2 or back1 or back2):
+                       "facing the scene: the new x axis points from camera 2 to camera 1, or the rectifying "
+                       "rotation's second and third axes point the opposite way -- the same maps, a homography's "
+                       "sign aside.", mistake="the rectified images are mirrored left to right (e1 alone, or e2 and "
+                       "e3, reversed)", hint=TOWARDS_CENTRE_HINT.said(t) or CROSS_ORDER_HINT.said(t))
+            if not (x1 or x2 or y1 or y2):
                 # (the disparities' trend tells a swap from a shift: swapped roles negate them, so they fall as
                 # the points come nearer; principal points that differ add one constant, so they still grow)
                 nearness = 1.0 / np.asarray(pair.X, float)[:, 2]
