@@ -5741,3 +5741,16 @@ def test_a_float_conversion_missing_from_a_dp_is_told_with_why_it_mends(tmp_path
     result = grade(mutant(tmp_path, "lab12_stereo", source), ["lab12.ex5"], pictures="none", include_hidden=False)
     messages = [c.message for c in check_results(result, "lab12.ex5") if c.score < c.max_score]
     assert any("adding the step" in m and "_grey_float(left)" in m and "wraps around" in m for m in messages), messages
+
+
+@pytest.mark.parametrize("shown, code, told", [
+    ((3, "Vt[:, -1]", "Vt[-1, :]"), "U, S, Vt = np.linalg.svd(A)", "V transposed"),
+    ((3, "np.linalg.svd(P)[2][:, -1]", "np.linalg.svd(P)[2][-1]"), "", "V transposed"),
+    ((3, "U[-1]", "U[:, -1]"), "U, S, Vt = np.linalg.svd(A)", "a column of it"),
+    ((3, "V[:, -1]", "V[-1, :]"), "V = A.T @ A", ""),                  # (no svd behind it: nothing said)
+    ((3, "Vt[:, 0]", "Vt[-1, :]"), "U, S, Vt = np.linalg.svd(A)", ""),   # (another index: not the transpose)
+])
+def test_a_column_taken_for_a_row_of_svd_is_told_why(shown, code, told):
+    fn = ast.parse(f"def f(A, P):\n    {code or 'pass'}\n    return 0\n").body[0]
+    why = repair._svd_vector_why([shown], fn)
+    assert (told in why) if told else why == "", why

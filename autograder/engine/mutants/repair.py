@@ -83,6 +83,7 @@ class Fix:
     edits: tuple
     skips: tuple = ()
     needed: bool = False   # a centring taken out that a right solution makes too (see _Variants.repair)
+    why: str = ""          # why the change mends, where its code says it (" (numpy's svd returns V transposed ...)")
 
     @property
     def size(self) -> int:
@@ -126,6 +127,7 @@ class Fix:
         # (one verb for changes of one kind; each its own where a step is taken out and a line changed)
         told = verbs[0] + " and ".join(said) if len(set(verbs)) == 1 else \
             " and ".join(verb + part for verb, part in zip(verbs, said))
+        told += self.why
         if self.skips:
             line, name, source, constants = self.skips
             reads = " and ".join(f"`{c}`" for c in constants)
@@ -308,8 +310,50 @@ def _disconnects(before, after, helpers_changed=frozenset(), own=frozenset()) ->
 _FLOAT_DTYPES = {"float", "float32", "float64", "np.float32", "np.float64", "numpy.float32", "numpy.float64",
                  "np.double", "np.single", "np.float_", "'float32'", "'float64'", "'float'", "cv2.CV_32F", "cv2.CV_64F"}
 # (why a conversion mends: told where the step added makes float arrays -- uint8 images subtracted, squared, averaged)
-_FLOAT_WHY = (": it makes the arrays float -- arithmetic on uint8 images wraps around (10 - 20 gives 246) and "
-              "rounds every result to a whole number")
+_FLOAT_WHY = (" (it makes the arrays float: arithmetic on uint8 images wraps around, 10 - 20 gives 246, and "
+              "rounds every result to a whole number)")
+
+
+_COLUMN_TO_ROW = re.compile(r"(?P<base>.+)\[\s*:\s*,\s*(?P<i>-?\d+)\s*\]")
+_ROW = re.compile(r"(?P<base>.+)\[\s*(?P<i>-?\d+)\s*(?:,\s*:\s*)?\]")
+
+
+def _svd_vector_why(shown, fn) -> str:
+    """Why a change between a column and a row of np.linalg.svd's answer mends, when it is one: its third
+    output is V transposed (a singular vector is a row of it), its first U (a vector is a column). "" for any
+    other change."""
+    if fn is None or len(shown) != 1 or shown[0] is None:
+        return ""
+    _, before, after = shown[0]
+    for column, row, factor in ((before, after, "Vt"), (after, before, "U")):
+        c, r = _COLUMN_TO_ROW.fullmatch(column), _ROW.fullmatch(row)
+        if c and r and c["base"] == r["base"] and c["i"] == r["i"] and _svd_output(c["base"], fn) == factor:
+            return (" (numpy's svd returns V transposed: a singular vector of V is a row of its third output)"
+                    if factor == "Vt" else " (a singular vector of U is a column of it, U[:, k])")
+    return ""
+
+
+def _svd_output(text: str, fn) -> str:
+    """"Vt" or "U" when ``text`` (an expression of ``fn``) is np.linalg.svd's third or first output: `...svd(A)[2]`,
+    or a name unpacked from an svd call (`U, S, Vt = np.linalg.svd(A)`); "" otherwise."""
+    def svd_call(node) -> bool:
+        return isinstance(node, ast.Call) and ast.unparse(node.func).rsplit(".", 1)[-1] == "svd"
+    try:
+        node = ast.parse(text, mode="eval").body
+    except (SyntaxError, ValueError, RecursionError):
+        return ""
+    if isinstance(node, ast.Subscript) and svd_call(node.value) and isinstance(node.slice, ast.Constant):
+        return {2: "Vt", 0: "U"}.get(node.slice.value, "")
+    if isinstance(node, ast.Name):
+        for assign in (n for n in ast.walk(fn) if isinstance(n, ast.Assign) and svd_call(n.value)):
+            target = assign.targets[0]
+            if isinstance(target, ast.Tuple) and len(target.elts) == 3:
+                names = [e.id if isinstance(e, ast.Name) else None for e in target.elts]
+                if node.id == names[2]:
+                    return "Vt"
+                if node.id == names[0]:
+                    return "U"
+    return ""
 
 
 def _makes_float(text: str, defs: dict) -> bool:
@@ -1466,7 +1510,8 @@ class _Student:
             except (SyntaxError, ValueError, RecursionError):   # (a change that cannot be written is none)
                 shown = [None]
             self.fixes[mutant.key] = None if any(each is None for each in shown) else \
-                Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits)
+                Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits,
+                    why=_svd_vector_why(shown, self._defs.get(mutant.where)))
         return self.fixes[mutant.key]
 
     def skipped_step(self, mutant) -> tuple:
