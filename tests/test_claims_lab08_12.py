@@ -339,3 +339,18 @@ def test_lab12_a_student_whose_code_does_it_is_not_told_the_realistic_mistake_is
     assert hint.asks is not None
     assert not told(hint, does_it, function), f"{name}: told to do what the code does"
     assert told(hint, mistake, function), f"{name}: the mistake is no longer told"
+
+
+def test_the_gray_decoding_is_read_in_the_decoder_not_in_the_pattern_maker():
+    # (06j 12/06: a check calling gray_code_patterns to make its images read the XOR written there as the decoder's)
+    hint = G[truth12.PLAIN_BINARY_DECODE]
+    source = textwrap.dedent("""
+        def gray_code_patterns(width, n_bits):
+            k = np.arange(width) * 2 ** n_bits // width
+            return (((k ^ (k >> 1))[None] >> np.arange(n_bits)[::-1, None]) & 1).astype(np.uint8) * 255
+        def depth_from_structured_light(images, f, baseline):
+            bits = np.array(images) > 127
+            return depth(bits, f, baseline)
+        """)
+    assert hint.functions == ("depth_from_structured_light",)
+    assert not hint.contradicts(read_code(source), hint.functions)

@@ -389,3 +389,21 @@ def test_a_rectify_whose_maps_bring_pixels_from_behind_the_camera_is_not_told_it
     messages = failing_messages(folder, "lab12.ex3")
     assert any("must share a row" in m for m in messages), messages
     assert not any("are not black" in m for m in messages), messages
+
+
+def test_an_ssd_of_normalised_images_beside_an_uncentred_ncc_is_not_told_the_costs_are_swapped(tmp_path):
+    # (audit of 2026-12-06: the gain check's swap was inferred from cost="ssd" coping with the gain alone; an SSD of
+    # images normalised as a whole copes too, and the NCC's own slip is its block means not subtracted)
+    folder = edited_reference(
+        tmp_path, "lab12_stereo",
+        ("    height, width = left.shape\n    costs = np.full((max_disparity + 1, height, width), np.inf)\n"
+         "    for d in range(min(max_disparity, width - 1) + 1):\n        squared",
+         "    height, width = left.shape\n    left = (left - left.mean()) / left.std()\n"
+         "    right = (right - right.mean()) / right.std()\n"
+         "    costs = np.full((max_disparity + 1, height, width), np.inf)\n"
+         "    for d in range(min(max_disparity, width - 1) + 1):\n        squared"),
+        ("covariance = _box_mean(left * shifted, block_size) - mean_l * mean_r",
+         "covariance = _box_mean(left * shifted, block_size)"))
+    result = grade(folder, ["lab12.ext1"], pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab12.ext1") if c.score < c.max_score]
+    assert failed and not any("costs are swapped" in c.message for c in failed), [c.message for c in failed]

@@ -802,8 +802,10 @@ def match_ratio(t):
                            "ratio test's; return every match that passes the test."),
                mistake=MATCHES_CUT)
     if counts[0.5] == counts[0.9]:
-        t.fail(f"{summary}: the ratio argument has no effect (ratio is ignored). " + RATIO_IGNORED_HINT.said(t),
-               mistake="ratio is ignored")
+        # (measured: the same matches for both ratios -- ratio unread, or read in a test every match passes,
+        # `ratio * best < second`: audit of 2026-12-06)
+        t.fail(f"{summary}: the ratio argument has no effect (both ratios keep the same matches). "
+               + RATIO_IGNORED_HINT.said(t), mistake="the ratio has no effect")
     if counts[0.5] > counts[0.9]:
         t.fail(f"{summary}: the stricter ratio kept more matches, so the ratio test is reversed "
                "(it keeps the ambiguous matches): " + RATIO_REVERSED_HINT.said(t),

@@ -80,10 +80,12 @@ def _xor(function) -> bool:
 
 XORS = (Predicate("computes an XOR", _xor) | calls("np.bitwise_xor") | calls("np.logical_xor")).saying(
     "computes an XOR")
+# (read in the decoder and its helpers only: an XOR in gray_code_patterns, which a check calls to make its
+# images, is no decoding step -- 06j 12/06)
 guard(truth.PLAIN_BINARY_DECODE, asks=XORS,
       instead="the patterns are decoded as plain binary: your code {found}, so check both steps: the Gray code turned "
               "into binary (b_0 = g_0, b_i = b_(i-1) XOR g_i), and the stripe index read from those binary bits b, "
-              "not from the Gray bits g")
+              "not from the Gray bits g", functions=("depth_from_structured_light",))
 
 MARGIN = 0.05   # bad-pixel rate accepted above the reference's on the same scene (DP, NCC)
 SLACK = 0.03    # block matching (SSD): accepted above the worst legitimate matcher's rate
@@ -2228,6 +2230,15 @@ def ncc_motorcycle(t):
 COSTS_SWAPPED = "the two costs are swapped: cost=\"ncc\" runs the SSD matching and cost=\"ssd\" the NCC"
 
 
+def _nearer(got, scene, cost: str) -> bool:
+    """Whether ``got`` (a map of the student's of ``scene``) is nearer the ``cost`` matching's map than the other
+    cost's (winner-take-all, 9 x 9 blocks)."""
+    if not isinstance(got, np.ndarray) or got.shape != np.asarray(scene.left).shape[:2]:
+        return False
+    apart = {c: truth.bad_pixel_rate(got, truth.winner_take_all(scene, 9, c), 1.0) for c in ("ssd", "ncc")}
+    return apart[cost] < apart["ncc" if cost == "ssd" else "ssd"]
+
+
 @ext1.check("NCC is robust to a brightness and contrast change between the views", points=4,
             timeout=STEREO_TIMEOUT)
 def ncc_gain(t):
@@ -2258,10 +2269,17 @@ def ncc_gain(t):
     # to a gain -- the reference's SSD fails here -- so its map being right says it is normalised)
     if isinstance(ssd, np.ndarray) and ssd.shape == got.shape \
             and truth.bad_pixel_rate(ssd, scene.judged, scene.threshold) <= reference + MARGIN:
-        t.fail(measured(f"{what}: bad-pixel rate {bad:.1%} (reference {reference:.1%}), while cost=\"ssd\" on the same "
-                        f"pair gives {truth.bad_pixel_rate(ssd, scene.judged, scene.threshold):.1%}, as only a "
-                        "normalised cost can (the sum of squared differences changes with the gain): it looks like "
-                        f"{COSTS_SWAPPED}."), mistake=COSTS_SWAPPED)
+        robust = (f"{what}: bad-pixel rate {bad:.1%} (reference {reference:.1%}), while cost=\"ssd\" on the same "
+                  f"pair gives {truth.bad_pixel_rate(ssd, scene.judged, scene.threshold):.1%}, as only a "
+                  "normalised cost can (the sum of squared differences changes with the gain)")
+        # (the swap is told where, on the plain pair, cost="ncc" is the SSD matching's map and cost="ssd" the NCC's: an SSD of images
+        # normalised as a whole is robust too, beside an NCC of its own gone wrong -- audit of 2026-12-06)
+        plain_ssd = t.call("block_matching", np.array(plain.left), np.array(plain.right),
+                           max_disparity=plain.max_disparity, block_size=9, cost="ssd")
+        if _nearer(unchanged, plain, "ssd") and _nearer(plain_ssd, plain, "ncc"):
+            t.fail(measured(f"{robust}: it looks like {COSTS_SWAPPED}."), mistake=COSTS_SWAPPED)
+        t.fail(measured(f"{robust}: cost=\"ssd\" copes with the gain where cost=\"ncc\" does not."),
+               mistake="cost=\"ncc\" is not robust to a gain where cost=\"ssd\" is")
     if (isinstance(unchanged, np.ndarray) and unchanged.shape == plain.disparity.shape
             and truth.bad_pixel_rate(unchanged, plain.judged, plain.threshold)
             <= figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN):
