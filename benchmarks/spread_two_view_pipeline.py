@@ -42,14 +42,18 @@ def load_reference():
     return module
 
 
-def sheet_pipeline(img1, img2, K, method=cv2.FM_RANSAC, threshold=None):
-    """The lab sheet's recipe as a student writes it (OpenCV's defaults unless given)."""
+def sift_matches(img1, img2, dtype):
+    """The sheet's matching: SIFT, OpenCV's brute-force matcher and Lowe's ratio test at 0.75, as ``dtype`` points."""
     sift = cv2.SIFT_create()
     kp1, des1 = sift.detectAndCompute(img1, None)
     kp2, des2 = sift.detectAndCompute(img2, None)
     good = [m for m, n in cv2.BFMatcher().knnMatch(des1, des2, k=2) if m.distance < 0.75 * n.distance]
-    pts1 = np.float32([kp1[m.queryIdx].pt for m in good])
-    pts2 = np.float32([kp2[m.trainIdx].pt for m in good])
+    return (np.array([kp1[m.queryIdx].pt for m in good], dtype), np.array([kp2[m.trainIdx].pt for m in good], dtype))
+
+
+def sheet_pipeline(img1, img2, K, method=cv2.FM_RANSAC, threshold=None):
+    """The lab sheet's recipe as a student writes it (OpenCV's defaults unless given)."""
+    pts1, pts2 = sift_matches(img1, img2, np.float32)
     if threshold is None:
         F, mask = cv2.findFundamentalMat(pts1, pts2, method)
     else:
@@ -63,12 +67,7 @@ def sheet_pipeline(img1, img2, K, method=cv2.FM_RANSAC, threshold=None):
 
 def mask_not_applied(img1, img2, K):
     """The recipe with F's RANSAC mask never applied: every match returned (those behind a camera dropped)."""
-    sift = cv2.SIFT_create()
-    kp1, des1 = sift.detectAndCompute(img1, None)
-    kp2, des2 = sift.detectAndCompute(img2, None)
-    good = [m for m, n in cv2.BFMatcher().knnMatch(des1, des2, k=2) if m.distance < 0.75 * n.distance]
-    pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
-    pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
+    pts1, pts2 = sift_matches(img1, img2, np.float64)
     F, _ = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
     _, R, t, _ = cv2.recoverPose(K.T @ F @ K, pts1, pts2, K)
     P1 = K @ np.hstack([np.eye(3), np.zeros((3, 1))])
@@ -80,12 +79,7 @@ def mask_not_applied(img1, img2, K):
 
 def essential_pipeline(img1, img2, K):
     """The recipe with cv2.findEssentialMat in place of F (OpenCV's defaults)."""
-    sift = cv2.SIFT_create()
-    kp1, des1 = sift.detectAndCompute(img1, None)
-    kp2, des2 = sift.detectAndCompute(img2, None)
-    good = [m for m, n in cv2.BFMatcher().knnMatch(des1, des2, k=2) if m.distance < 0.75 * n.distance]
-    pts1 = np.float64([kp1[m.queryIdx].pt for m in good])
-    pts2 = np.float64([kp2[m.trainIdx].pt for m in good])
+    pts1, pts2 = sift_matches(img1, img2, np.float64)
     E, mask = cv2.findEssentialMat(pts1, pts2, K)
     pts1, pts2 = pts1[mask.ravel() == 1], pts2[mask.ravel() == 1]
     _, R, t, _ = cv2.recoverPose(E, pts1, pts2, K)
