@@ -17,6 +17,7 @@ ROWS_FIRST = {
     "unpacked (h, w) to warpAffine": "def f(img, M):\n    h, w = img.shape[:2]\n    return cv2.warpAffine(img, M, (h, w))\n",
     "keyword size": "def f(K, d, img):\n    return cv2.initUndistortRectifyMap(K, d, None, K, size=img.shape[0:2], m1type=5)\n",
     "indexed tuple": "def f(img, H):\n    return cv2.warpPerspective(img, H, (img.shape[0], img.shape[1]))\n",
+    "a name given the shape": "def f(img, M):\n    size = img.shape[:2]\n    return cv2.warpAffine(img, M, size)\n",
     "in a helper": "def f(img, H):\n    return _warp(img, H)\ndef _warp(img, H):\n"
                    "    rows, cols = img.shape[:2]\n    return cv2.warpPerspective(img, H, dsize=(rows, cols))\n",
 }
@@ -25,6 +26,9 @@ RIGHT = {
     "(w, h)": "def f(img, M):\n    h, w = img.shape[:2]\n    return cv2.warpAffine(img, M, (w, h))\n",
     "columns first indexed": "def f(img, H):\n    return cv2.warpPerspective(img, H, (img.shape[1], img.shape[0]))\n",
     "a size not from a shape": "def f(img, M, size):\n    return cv2.warpAffine(img, M, size)\n",
+    "a name given the shape reversed": "def f(img, M):\n    size = img.shape[1::-1]\n    return cv2.warpAffine(img, M, size)\n",
+    "a name given twice": "def f(img, M, w, h):\n    size = img.shape[:2]\n    size = (w, h)\n"
+                        "    return cv2.warpAffine(img, M, size)\n",
 }
 
 

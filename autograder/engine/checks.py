@@ -515,10 +515,13 @@ class Trial:
                 form = shape_form(value.shape, tuple(shape))
                 also = _kind_too(value, dtype, kind)
                 swapped = self._why_swapped(value.shape, shape).removeprefix("; ")
-                if swapped:   # (the call read in the code is the cause: no guess from the lengths beside it)
+                image = dtype is not None and np.dtype(dtype) == np.uint8   # (an image asked: not an (F, N, 2) stack)
+                if swapped or (image and _image_sides_swapped(value.shape, shape)):
+                    # (an image's height and width exchanged: the call read in the code is the cause where it is
+                    # found, and no guess from the lengths -- "stacked along another axis?" -- beside it)
                     self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
                               f"width and height are swapped (shapes are (rows, columns), OpenCV's sizes are "
-                              f"(width, height)): {swapped}{also}", mistake=SIZE_SWAPPED)
+                              f"(width, height)){': ' + swapped if swapped else ''}{also}", mistake=SIZE_SWAPPED)
                 if form is not None:
                     self.fail(f"{what} returned an array of shape {value.shape}; expected {_shape_text(shape)}: "
                               f"{form.sentence}{also}", mistake=form.mistake)
@@ -842,6 +845,15 @@ def _has_fraction(values: np.ndarray) -> bool:
 
 ARRAYS_HELD = "a tuple or list of arrays returned where one array is asked"
 SIZE_SWAPPED = "width and height are swapped"   # an image (W, H) for (H, W): a size given rows first
+
+
+def _image_sides_swapped(got, expected) -> bool:
+    """Whether ``got`` is an image shape ``expected`` (both sides at least 8, unequal) with its height and width
+    exchanged, its channels kept."""
+    expected = tuple(expected)
+    return len(got) == len(expected) in (2, 3) and None not in expected[:2] and min(expected[:2]) >= 8 \
+        and expected[0] != expected[1] and tuple(got[:2]) == (expected[1], expected[0]) \
+        and tuple(got[2:]) == expected[2:]
 
 
 def _arrays_held(value, shape) -> str:

@@ -1034,12 +1034,17 @@ def size_given_as_shape(code: Code, functions: Iterable[str]) -> str:
     ..."; "" when no such call is written."""
     for function in code.reachable(functions):
         unpacked = {}
+        named: dict = {}   # a name given a size rows first once (`size = image.shape[:2]`) -> that value
         for node in ast.walk(function):
             if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Tuple) and isinstance(
                     node.value, ast.Subscript) and _path(node.value.value).endswith("shape"):
                 for position, target in enumerate(node.targets[0].elts):
                     if isinstance(target, ast.Name):
                         unpacked[target.id] = position
+        for node in ast.walk(function):
+            if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+                name = node.targets[0].id
+                named[name] = _rows_first(node.value, unpacked) if name not in named else None   # (once only)
         for node in ast.walk(function):
             if not isinstance(node, ast.Call):
                 continue
@@ -1051,6 +1056,10 @@ def size_given_as_shape(code: Code, functions: Iterable[str]) -> str:
             given += [k.value for k in node.keywords if k.arg in keywords]
             for argument in given:
                 part = _rows_first(argument, unpacked)
+                if part is None and isinstance(argument, ast.Name) and named.get(argument.id) is not None:
+                    part = named[argument.id]
+                    return (f"passes `{argument.id}` = `{_unparsed(part)}` (rows, columns) to cv2.{name} as its "
+                            "size, which OpenCV reads as (width, height)")
                 if part is not None:
                     return (f"passes `{_unparsed(part)}` (rows, columns) to cv2.{name} as its size, which "
                             "OpenCV reads as (width, height)")
