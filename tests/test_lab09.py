@@ -134,3 +134,21 @@ def test_a_seeded_call_is_said_to_keep_rays_in_only_where_it_does(tmp_path):
 
 
 _KEEPDIMS = (("    r2 = x * x + y * y\n", "    r2 = np.sum(pts ** 2, axis=1, keepdims=True)\n"),)
+
+
+@pytest.mark.parametrize("body, told", [
+    # (raises for the points behind only: the note on Z <= 0 is the cause)
+    ("    if np.any(X[:, 2] <= 0):\n        raise ValueError('point behind the camera')\n"
+     "    return f * X[:, :2] / X[:, 2:3]", True),
+    # (raises for every call of three points or more -- 06k 10/01's broadcast: the points behind are not its cause)
+    ("    return f * X[:, :2] / X[:, 2]", False),
+])
+def test_the_points_behind_are_told_as_the_cause_of_a_raise_only_where_they_are(tmp_path, body, told):
+    source = "def pinhole_project(points, f):\n    X = np.atleast_2d(np.asarray(points, dtype=np.float64))\n" + body + "\n"
+    from autograder.engine.runner import grade
+    from conftest import mutant
+
+    result = grade(mutant(tmp_path, "lab09_camera", source), ["lab09.ex1"], pictures="none", include_hidden=False)
+    behind = [c for c in check_results(result, "lab09.ex1") if "behind" in c.name and c.score < c.max_score]
+    assert behind, [c.name for c in check_results(result, "lab09.ex1")]
+    assert ("the projection must not raise for them" in behind[0].message) is told, behind[0].message

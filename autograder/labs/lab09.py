@@ -406,9 +406,28 @@ def call_behind(t: Trial, what: str, function: str, *args):
     except StudentFailure as failure:
         if failure.outcome.kind != "exception":
             raise
+        if _raises_in_front_too(t, function, args):   # (the points behind are not what it stumbles on: 06k 10/01)
+            raise StudentFailure(failure.outcome, f"{what}: {failure.message}") from None
         raise StudentFailure(failure.outcome, f"{what}: {failure.message}\nThese points include one at Z = 0 "
                              "(on the camera's principal plane) and some behind the camera (Z < 0): the "
                              "projection must not raise for them (NaN is the usual value there).") from None
+
+
+def _raises_in_front_too(t: Trial, function: str, args) -> bool:
+    """Whether ``function`` raises on the same call with only the points in front of the camera (the (N, 3)
+    argument's rows with Z > 0, three at least): then its exception is not the points behind's."""
+    at = next((k for k, a in enumerate(args) if isinstance(a, np.ndarray) and a.ndim == 2 and a.shape[1] == 3
+               and np.any(a[:, 2] <= 0)), None)
+    if at is None:
+        return False
+    front = args[at][args[at][:, 2] > 0]
+    if len(front) < 3:
+        return False
+    try:
+        t.call(function, *args[:at], front, *args[at + 1:])
+    except StudentFailure as failure:
+        return failure.outcome.kind == "exception"
+    return False
 
 
 def judge_in_front(t: Trial, what: str, got, expected, behind):
