@@ -3010,7 +3010,8 @@ def pattern_mistakes(width, n_bits) -> dict:
     return {
         "plain binary code of k instead of its Gray code (g = k XOR (k >> 1))":
             truth.binary_code_patterns(width, n_bits),
-        "the bits are in the wrong order: row 0 carries the most significant bit": expected[::-1],
+        "the bits are in the wrong order: row 0 carries the least significant bit, where the most significant "
+        "belongs (bit i of the code, most significant first, in row i)": expected[::-1],
         "black and white are swapped (bit 1 is 255)": 255 - expected,
         ZERO_ONE: expected // 255,
         "the stripe index is rounded; it is floor(u * 2**n_bits / width), (u * 2**n_bits) // width":
