@@ -56,6 +56,8 @@ def _sets_ones(function) -> bool:
 
 ONES_COLUMN = (calls_any("np.ones", "np.ones_like", "cv2.convertPointsToHomogeneous")
                | Predicate("sets entries of the system to 1", _sets_ones)).saying("builds the column of ones")
+# (what A came out as, measured; the two causes it names are the two ways code makes it)
+measured(truth.TRANSPOSED_READ_BY_ROWS)
 guard(truth.NO_ONES_COLUMN, asks=ONES_COLUMN,
       instead="the fit has no translation (its last column is 0), yet your code {found}: look at how the system "
               "is solved and how its solution is read back into the matrix")

@@ -3288,9 +3288,9 @@ def name_inverse_warp(t: Trial, judge: PanoramaJudge, what: str, images=None):
             mistake = (f"image {k + 1} was warped with the inverse homography: its chain to the reference goes the "
                        "wrong way")
             judge.show(t, what)
-            t.fail(f"{what} (reference frame: image {judge.reference + 1}): {mistake} (H_k->ref maps image "
-                   f"{k + 1}'s pixels into the reference: look at which pairwise H are inverted, H_k->ref = "
-                   "inv(H_ref->k), and at the direction of each pair's matches).", mistake=mistake)
+            t.fail(measured(f"{what} (reference frame: image {judge.reference + 1}): {mistake} (H_k->ref maps image "
+                            f"{k + 1}'s pixels into the reference: look at which pairwise H are inverted, H_k->ref = "
+                            "inv(H_ref->k), and at the direction of each pair's matches)."), mistake=mistake)
 
 
 def judge_many_content(t: Trial, judge: PanoramaJudge, what: str, per_step: bool = False):

@@ -1448,7 +1448,7 @@ UNDISTORT_TOLERANCE = 6.0
 DIST_TO_UNDISTORT_HINT = Hint(
     ": dist is not used (cv2.undistort(image, K, dist)).", asks=DIST_TO_UNDISTORT,
     instead=": your code {found}, yet it returns the input as it was: check that the image returned is "
-            "cv2.undistort's answer, and that the dist given is the one passed (not None or zeros).")
+            "cv2.undistort's answer, given the dist passed in (not None or zeros).")
 
 
 def undistorted(t: Trial, what: str, image, expected, seen: str, dist=None):

@@ -553,9 +553,9 @@ def diagnose_disparity(t: Trial, what, got, scene, allowed, again=None, judged=N
     for shift in (1, -1):
         if truth.bad_pixel_rate(finite + shift, gt, 0.5) <= allowed:
             # (the range of d and the right image's column x - d both shift every disparity by one: audit of 2026-12-06)
-            t.fail(f"{what}: every disparity is off by {'-' if shift > 0 else '+'}1 - "
-                   "it looks like an off-by-one error in the disparity index: look at the disparities searched (d "
-                   "runs from 0) and at the right image's column matched with left column x (x - d).",
+            t.fail(measured(f"{what}: every disparity is off by {'-' if shift > 0 else '+'}1 - "
+                            "it looks like an off-by-one error in the disparity index: look at the disparities searched "
+                            "(d runs from 0) and at the right image's column matched with left column x (x - d)."),
                    mistake="the disparity index is off by one")
     name_disparity_scale(t, what, finite, gt, thr, scene.max_disparity)
     matched = getattr(mistakes, "matched", None)

@@ -339,7 +339,7 @@ def _svd_output(text: str, fn) -> str:
     def svd_call(node) -> bool:
         return isinstance(node, ast.Call) and ast.unparse(node.func).rsplit(".", 1)[-1] == "svd"
     try:
-        node = ast.parse(text, mode="eval").body
+        node = parse(text, mode="eval").body
     except (SyntaxError, ValueError, RecursionError):
         return ""
     if isinstance(node, ast.Subscript) and svd_call(node.value) and isinstance(node.slice, ast.Constant):
@@ -360,7 +360,7 @@ def _makes_float(text: str, defs: dict) -> bool:
     """Whether the statement ``text`` converts to float: an ``astype``, ``np.float32(...)`` and the like, or a call
     of a def of the student's (``defs``) whose returns do (one call deep)."""
     try:
-        statement = ast.parse(text)
+        statement = parse(text)
     except (SyntaxError, ValueError, RecursionError):
         return False
 
