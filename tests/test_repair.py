@@ -5754,3 +5754,8 @@ def test_a_column_taken_for_a_row_of_svd_is_told_why(shown, code, told):
     fn = ast.parse(f"def f(A, P):\n    {code or 'pass'}\n    return 0\n").body[0]
     why = repair._svd_vector_why([shown], fn)
     assert (told in why) if told else why == "", why
+
+
+def test_a_number_made_a_python_float_is_not_said_to_make_arrays_float():
+    assert not repair._makes_float("n = float(n)", {})
+    assert repair._makes_float("image = image.astype(float)", {})

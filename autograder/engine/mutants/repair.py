@@ -307,8 +307,10 @@ def _disconnects(before, after, helpers_changed=frozenset(), own=frozenset()) ->
     return bool((feeding & assigned & _live(before)) - _live(after))
 
 
-_FLOAT_DTYPES = {"float", "float32", "float64", "np.float32", "np.float64", "numpy.float32", "numpy.float64",
-                 "np.double", "np.single", "np.float_", "'float32'", "'float64'", "'float'", "cv2.CV_32F", "cv2.CV_64F"}
+# (NumPy's float types and dtype names; not the builtin float() of one number, whose fix is no image's dtype)
+_FLOAT_DTYPES = {"np.float32", "np.float64", "numpy.float32", "numpy.float64", "np.double", "np.single", "float",
+                 "'float32'", "'float64'", "'float'", "cv2.CV_32F", "cv2.CV_64F"}
+_FLOAT_MAKERS = _FLOAT_DTYPES - {"float", "'float32'", "'float64'", "'float'", "cv2.CV_32F", "cv2.CV_64F"}
 # (why a conversion mends: told where the step added makes float arrays -- uint8 images subtracted, squared, averaged)
 _FLOAT_WHY = (" (it makes the arrays float: arithmetic on uint8 images wraps around, 10 - 20 gives 246, and "
               "rounds every result to a whole number)")
@@ -367,7 +369,7 @@ def _makes_float(text: str, defs: dict) -> bool:
     def converts(node) -> bool:
         for call in (n for n in ast.walk(node) if isinstance(n, ast.Call)):
             name = ast.unparse(call.func)
-            if name in _FLOAT_DTYPES:
+            if name in _FLOAT_MAKERS:   # (np.float32(image): a call of the type itself)
                 return True
             if name.endswith(".astype") and call.args and ast.unparse(call.args[0]) in _FLOAT_DTYPES:
                 return True
