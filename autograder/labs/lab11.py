@@ -2101,7 +2101,7 @@ def name_normalised_points(t: Trial, pair, pts1, pts2):
 # The pairs returned beside F are those it was estimated over ("F over them"): a pipeline keeping F's inliers
 # returns none far from its epipolar lines (0.0% beyond 3 px, every pipeline of
 # benchmarks/spread_two_view_pipeline.py on eight pairs); one returning every match keeps RANSAC's outliers
-# (0.4-7.2% beyond 5 px on the same pairs, as many as the matching left).
+# (0.0-6.8% beyond 5 px on the same pairs, as many as the matching left: the benchmark's last column).
 OFF_THEIR_F = 5.0          # px (symmetric epipolar distance) from the lines of the F returned
 OFF_THEIR_F_SHARE = 0.02   # of the pairs returned, at most (and two pairs)
 OUTLIERS_KEPT = "the outliers of F are kept among the matches returned"
