@@ -5747,7 +5747,11 @@ def test_a_float_conversion_missing_from_a_dp_is_told_with_why_it_mends(tmp_path
     ((3, "Vt[:, -1]", "Vt[-1, :]"), "U, S, Vt = np.linalg.svd(A)", "V transposed"),
     ((3, "np.linalg.svd(P)[2][:, -1]", "np.linalg.svd(P)[2][-1]"), "", "V transposed"),
     ((3, "U[-1]", "U[:, -1]"), "U, S, Vt = np.linalg.svd(A)", "a column of it"),
-    ((3, "V[:, -1]", "V[-1, :]"), "V = A.T @ A", ""),                  # (no svd behind it: nothing said)
+    ((3, "V[:, -1]", "V[-1, :]"), "V = A.T @ A", "is row -1 of `V`"),   # (no svd behind it: NumPy's rows and columns)
+    ((3, "np.mean(pts[2])", "np.mean(pts[:, 2])"), "", "`pts[2]` is row 2"),   # (06j 10/01: the index inside a call)
+    ((3, "pts[2]", "pts[:, 2]"), "", "`pts[2]` is row 2 of `pts`, `pts[:, 2]` its column"),
+    ((3, "pts.mean(axis=1)", "pts.mean(axis=0)"), "", "one value per column"),
+    ((3, "pts.mean(axis=1)", "pts.sum(axis=0)"), "", ""),                # (more than the axis changed)
     ((3, "Vt[:, 0]", "Vt[-1, :]"), "U, S, Vt = np.linalg.svd(A)", ""),   # (another index: not the transpose)
 ])
 def test_a_column_taken_for_a_row_of_svd_is_told_why(shown, code, told):

@@ -320,19 +320,45 @@ _COLUMN_TO_ROW = re.compile(r"(?P<base>.+)\[\s*:\s*,\s*(?P<i>-?\d+)\s*\]")
 _ROW = re.compile(r"(?P<base>.+)\[\s*(?P<i>-?\d+)\s*(?:,\s*:\s*)?\]")
 
 
+_AXIS = re.compile(r"\baxis\s*=\s*(-?\d+)")
+
+
 def _svd_vector_why(shown, fn) -> str:
-    """Why a change between a column and a row of np.linalg.svd's answer mends, when it is one: its third
-    output is V transposed (a singular vector is a row of it), its first U (a vector is a column). "" for any
-    other change."""
+    """Why a change between a column and a row mends, in NumPy's terms, when it is one: of np.linalg.svd's
+    answer, its third output is V transposed (a singular vector is a row of it), its first U (a vector is a
+    column); of any other array, `a[i]` is its row i and `a[:, i]` its column i; a reduction's axis=0 gives one
+    value per column, axis=1 one per row. "" for any other change."""
     if fn is None or len(shown) != 1 or shown[0] is None:
         return ""
     _, before, after = shown[0]
+    before, after = _changed_subscripts(before, after) or (before, after)
     for column, row, factor in ((before, after, "Vt"), (after, before, "U")):
         c, r = _COLUMN_TO_ROW.fullmatch(column), _ROW.fullmatch(row)
-        if c and r and c["base"] == r["base"] and c["i"] == r["i"] and _svd_output(c["base"], fn) == factor:
-            return (" (numpy's svd returns V transposed: a singular vector of V is a row of its third output)"
-                    if factor == "Vt" else " (a singular vector of U is a column of it, U[:, k])")
+        if c and r and c["base"] == r["base"] and c["i"] == r["i"]:
+            made = _svd_output(c["base"], fn)
+            if made == factor:
+                return (" (numpy's svd returns V transposed: a singular vector of V is a row of its third output)"
+                        if factor == "Vt" else " (a singular vector of U is a column of it, U[:, k])")
+            if not made and len(c["base"]) <= 40:
+                return f" (`{c['base']}[{c['i']}]` is row {c['i']} of `{c['base']}`, `{c['base']}[:, {c['i']}]` its column)"
+    axes = [_AXIS.findall(text) for text in (before, after)]
+    if len(axes[0]) == len(axes[1]) == 1 and {axes[0][0], axes[1][0]} == {"0", "1"} \
+            and _AXIS.sub("", before) == _AXIS.sub("", after):
+        return " (along axis=0 a 2-D array gives one value per column, along axis=1 one per row)"
     return ""
+
+
+def _changed_subscripts(before: str, after: str) -> tuple | None:
+    """The one subscript ``before`` writes that ``after`` does not, and the one in its place (`pts[2]` and
+    `pts[:, 2]` of `np.mean(pts[2])` and `np.mean(pts[:, 2])`); None when not exactly one each."""
+    def subscripts(text) -> set:
+        try:
+            return {ast.unparse(n) for n in ast.walk(parse(text, mode="eval")) if isinstance(n, ast.Subscript)}
+        except (SyntaxError, ValueError, RecursionError):
+            return set()
+    gone, made = subscripts(before), subscripts(after)
+    gone, made = gone - made, made - gone
+    return (gone.pop(), made.pop()) if len(gone) == len(made) == 1 else None
 
 
 def _svd_output(text: str, fn) -> str:
