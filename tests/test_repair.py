@@ -5744,6 +5744,19 @@ def test_a_float_conversion_missing_from_a_dp_is_told_with_why_it_mends(tmp_path
 
 
 @pytest.mark.parametrize("shown, code, told", [
+    # (06k 10/06: pattern_size reversed for the corner search alone)
+    ((3, "tuple(pattern_size)[::-1]", "tuple(pattern_size)"),
+     "found, corners = cv2.findChessboardCorners(grey, tuple(pattern_size)[::-1])", "(columns, rows)"),
+    ((3, "(h, w)", "(w, h)"), "return cv2.warpAffine(image, M, (h, w))", "(width, height)"),
+    ((3, "(h, w)", "(w, h)"), "return np.zeros((h, w))", ""),             # (no OpenCV call reads the pair)
+])
+def test_a_pair_an_opencv_call_reads_in_its_own_order_is_told_why(shown, code, told):
+    fn = ast.parse(f"def f(grey, image, M, pattern_size, h, w):\n    {code}\n").body[0]
+    why = repair._why_it_mends([shown], fn)
+    assert (told in why) if told else why == "", why
+
+
+@pytest.mark.parametrize("shown, code, told", [
     ((3, "Vt[:, -1]", "Vt[-1, :]"), "U, S, Vt = np.linalg.svd(A)", "V transposed"),
     ((3, "np.linalg.svd(P)[2][:, -1]", "np.linalg.svd(P)[2][-1]"), "", "V transposed"),
     ((3, "U[-1]", "U[:, -1]"), "U, S, Vt = np.linalg.svd(A)", "a column of it"),
@@ -5756,7 +5769,7 @@ def test_a_float_conversion_missing_from_a_dp_is_told_with_why_it_mends(tmp_path
 ])
 def test_a_column_taken_for_a_row_of_svd_is_told_why(shown, code, told):
     fn = ast.parse(f"def f(A, P):\n    {code or 'pass'}\n    return 0\n").body[0]
-    why = repair._svd_vector_why([shown], fn)
+    why = repair._why_it_mends([shown], fn)
     assert (told in why) if told else why == "", why
 
 

@@ -41,7 +41,7 @@ import numpy as np
 from ...loading.parsing import parse
 from ...loading.reading import MAX_SOURCE_BYTES
 from ..checks import Trial, Verdict, fingerprint
-from ..hints import RANDOM_DRAWS
+from ..hints import RANDOM_DRAWS, SIZE_ARGUMENTS
 from ..inherited import SHARED_FAILING
 from . import anchors, naming
 from .aligned import aligned_mutants
@@ -323,7 +323,7 @@ _ROW = re.compile(r"(?P<base>.+)\[\s*(?P<i>-?\d+)\s*(?:,\s*:\s*)?\]")
 _AXIS = re.compile(r"\baxis\s*=\s*(-?\d+)")
 
 
-def _svd_vector_why(shown, fn) -> str:
+def _why_it_mends(shown, fn) -> str:
     """Why a change between a column and a row mends, in NumPy's terms, when it is one: of np.linalg.svd's
     answer, its third output is V transposed (a singular vector is a row of it), its first U (a vector is a
     column); of any other array, `a[i]` is its row i and `a[:, i]` its column i; a reduction's axis=0 gives one
@@ -341,10 +341,46 @@ def _svd_vector_why(shown, fn) -> str:
                         if factor == "Vt" else " (a singular vector of U is a column of it, U[:, k])")
             if not made and len(c["base"]) <= 40:
                 return f" (`{c['base']}[{c['i']}]` is row {c['i']} of `{c['base']}`, `{c['base']}[:, {c['i']}]` its column)"
+    opencv = _opencv_order_why(shown[0][1], shown[0][2], fn)
+    if opencv:
+        return opencv
     axes = [_AXIS.findall(text) for text in (before, after)]
     if len(axes[0]) == len(axes[1]) == 1 and {axes[0][0], axes[1][0]} == {"0", "1"} \
             and _AXIS.sub("", before) == _AXIS.sub("", after):
         return " (along axis=0 a 2-D array gives one value per column, along axis=1 one per row)"
+    return ""
+
+
+# (what an OpenCV call reads a pair of numbers as, where a change reversing or swapping the pair mends)
+_PATTERN_CALLS = {"findChessboardCorners", "findChessboardCornersSB", "drawChessboardCorners", "findCirclesGrid"}
+
+
+def _opencv_order_why(before: str, after: str, fn) -> str:
+    """Why a change that reverses a pair (`[::-1]` taken out or put in, two items exchanged) mends, where the pair
+    is what an OpenCV call of ``fn`` reads as a size (width, height) or a board's pattern (columns, rows); ""
+    otherwise."""
+    def items(text):
+        try:
+            node = parse(text, mode="eval").body
+        except (SyntaxError, ValueError, RecursionError):
+            return None
+        return node
+    b, a = items(before), items(after)
+    if b is None or a is None:
+        return ""
+    reversal = lambda n: isinstance(n, ast.Subscript) and ast.unparse(n.slice) == "::-1"  # noqa: E731
+    swapped = isinstance(b, ast.Tuple) and isinstance(a, ast.Tuple) and len(b.elts) == len(a.elts) == 2 \
+        and ast.unparse(b.elts[0]) == ast.unparse(a.elts[1]) and ast.unparse(b.elts[1]) == ast.unparse(a.elts[0])
+    if not (swapped or (reversal(b) and ast.unparse(b.value) == after) or (reversal(a) and ast.unparse(a.value) == before)):
+        return ""
+    for call in (n for n in ast.walk(fn) if isinstance(n, ast.Call)):
+        name = ast.unparse(call.func).rsplit(".", 1)[-1]
+        if not any(ast.unparse(arg) == before for arg in list(call.args) + [k.value for k in call.keywords]):
+            continue
+        if name in _PATTERN_CALLS:
+            return f" (cv2.{name} reads a pattern as (columns, rows) of inner corners: the API's pattern_size as given)"
+        if name in SIZE_ARGUMENTS:
+            return f" (cv2.{name} reads a size as (width, height), where a shape is (rows, columns))"
     return ""
 
 
@@ -1539,7 +1575,7 @@ class _Student:
                 shown = [None]
             self.fixes[mutant.key] = None if any(each is None for each in shown) else \
                 Fix(tuple(shown), mutant.where, mutant.operator, mutant.edits,
-                    why=_svd_vector_why(shown, self._defs.get(mutant.where)))
+                    why=_why_it_mends(shown, self._defs.get(mutant.where)))
         return self.fixes[mutant.key]
 
     def skipped_step(self, mutant) -> tuple:
