@@ -418,9 +418,7 @@ class Trial:
     def _why_swapped(self, got, expected) -> str:
         """For an image returned (W, H) where (H, W) is asked, the OpenCV call the student's code
         gives a size rows first (": your code passes `image.shape[:2]` ... to cv2.resize ...")."""
-        expected = tuple(expected)
-        if len(got) < 2 or len(expected) < 2 or None in expected[:2] or expected[0] == expected[1] or \
-                tuple(got[:2]) != (expected[1], expected[0]) or tuple(got[2:]) != expected[2:]:
+        if not _image_sides_swapped(got, expected, smallest=0):
             return ""
         from .hints import code_of, functions_read, size_given_as_shape
 
@@ -847,11 +845,11 @@ ARRAYS_HELD = "a tuple or list of arrays returned where one array is asked"
 SIZE_SWAPPED = "width and height are swapped"   # an image (W, H) for (H, W): a size given rows first
 
 
-def _image_sides_swapped(got, expected) -> bool:
-    """Whether ``got`` is an image shape ``expected`` (both sides at least 8, unequal) with its height and width
-    exchanged, its channels kept."""
+def _image_sides_swapped(got, expected, smallest: int = 8) -> bool:
+    """Whether ``got`` is the shape ``expected`` (its first two sides at least ``smallest``, unequal) with those
+    two exchanged, the rest kept: an image's height and width."""
     expected = tuple(expected)
-    return len(got) == len(expected) in (2, 3) and None not in expected[:2] and min(expected[:2]) >= 8 \
+    return len(got) == len(expected) >= 2 and None not in expected[:2] and min(expected[:2]) >= smallest \
         and expected[0] != expected[1] and tuple(got[:2]) == (expected[1], expected[0]) \
         and tuple(got[2:]) == expected[2:]
 
