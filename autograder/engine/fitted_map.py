@@ -78,10 +78,15 @@ def _apart(A, got, source) -> float | None:
     return float(apart[covered].mean())
 
 
+REFINED_PIXELS = 640 * 480   # sources refined on their grey levels at most this large (the checks' images are smaller)
+
+
 def _refined(A, got, source) -> np.ndarray | None:
     """``A`` refined on the images' grey levels (cv2.findTransformECC from ``A``, over the source's pixels
     ``A`` puts inside ``got``'s frame, a few pixels in from its edges: the frame's fill is no content), or None
     when it does not converge."""
+    if source.shape[0] * source.shape[1] > REFINED_PIXELS:   # (the time of an explanation stays bounded)
+        return None
     template, moved = _grey(source).astype(np.float32), _grey(got).astype(np.float32)
     h, w = template.shape
     ys, xs = np.mgrid[0:h, 0:w].astype(np.float32)
