@@ -204,3 +204,53 @@ def test_a_clock_draws_on_its_spare_time_only_as_far_as_needed_and_given():
     assert 2.4 < clock.left() <= 2.5 and clock.spare < 0.6
     clock.draw_on_spare(10.0)          # (no more than the spare)
     assert clock.spare == 0.0 and clock.seconds == 3.0
+
+
+def test_a_grading_s_naming_time_follows_what_the_grading_takes_without_it():
+    """Naming's time for a grading is the grading's own forecast -- its start, and its checks' verdicts
+    extrapolated from those judged so far -- within the floor and each namer's cap, in shares."""
+    from types import SimpleNamespace
+
+    def trial(seconds, done, total, start=0.0):
+        return SimpleNamespace(sandbox=SimpleNamespace(shared={naming.JUDGED: [seconds, done, total, start]}))
+
+    share = naming.SHARES["error model"]
+    # 10 checks judged in 4 s of 40, after a 1 s start: 17 s forecast
+    assert naming.grading_seconds(trial(4.0, 10, 40, 1.0), most=100.0) == pytest.approx(share * 17.0)
+    assert naming.grading_seconds(trial(4.0, 10, 40, 1.0)) == pytest.approx(min(naming.GRADING_SECONDS, share * 17.0))
+    # one fast check of three: the floor
+    assert naming.grading_seconds(trial(0.01, 1, 3)) == pytest.approx(share * naming.FLOOR_SECONDS)
+    # each namer its share
+    traced = naming.grading_seconds(trial(4.0, 10, 40, 1.0), "traced", most=100.0)
+    assert traced == pytest.approx(naming.SHARES["traced"] * 17.0)
+    # nothing judged yet, or no grading's counter: the namer's cap
+    assert naming.grading_seconds(trial(0.0, 0, 40), most=7.0) == 7.0
+    assert naming.grading_seconds(SimpleNamespace(), most=7.0) == 7.0
+
+
+def test_the_runner_counts_every_check_it_judges_public_and_hidden_in_one_counter(tmp_path):
+    """The grading's counter holds its start, the checks it judges and their seconds: one counter for
+    every worker, the hidden phase's included, and every check it said it would judge judged."""
+    import shutil
+    from pathlib import Path
+
+    from autograder.engine.runner import grade
+    from autograder.sandbox import supervisor
+
+    root = Path(__file__).resolve().parents[1]
+    shutil.copy(root / "reference_solutions" / "lab07_transformations.py", tmp_path)
+    counters = []
+    original = supervisor.Sandbox.close
+
+    def kept(self, *args, **kwargs):
+        counters.append(self.shared.get(naming.JUDGED))
+        return original(self, *args, **kwargs)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(supervisor.Sandbox, "close", kept)
+        result = grade(tmp_path, ["lab07"], pictures="none")
+    judged = [c for e in result.exercises for c in e.checks if not c.advice]
+    assert len({id(counter) for counter in counters}) == 1 and len(counters) >= 2   # (public and hidden workers)
+    seconds, done, total, start = counters[0]
+    assert done == total == len(judged)
+    assert 0 < seconds <= sum(c.seconds for c in judged) + 1e-6 and start > 0
