@@ -253,4 +253,5 @@ def test_the_runner_counts_every_check_it_judges_public_and_hidden_in_one_counte
     assert len({id(counter) for counter in counters}) == 1 and len(counters) >= 2   # (public and hidden workers)
     seconds, done, total, start = counters[0]
     assert done == total == len(judged)
-    assert 0 < seconds <= sum(c.seconds for c in judged) + 1e-6 and start > 0
+    # (CPU seconds of the grading thread and the worker, in clock ticks: of the order of the checks' own seconds)
+    assert 0 < seconds < 3 * sum(c.seconds for c in judged) + 0.5 and start > 0

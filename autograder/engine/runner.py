@@ -695,12 +695,6 @@ def _named_by_repair(verdict: Verdict, check: Check, trial: Trial, traceback_tex
         return verdict
 
 
-def _judged(sandbox, seconds: float) -> None:
-    from .mutants.naming import judged
-
-    judged(getattr(sandbox, "shared", {}), seconds)
-
-
 def _one_naming_time(sandboxes: list, to_judge: int, start: float) -> None:
     """One time per grading for naming failures, whatever its lanes and phases: every worker's shared values
     hold the same counters -- seconds only, nothing of a hidden check's: the time the grading's ``to_judge``
@@ -1026,8 +1020,10 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     """
     if check.advice:
         return _run_advice(sandbox, check, modified, rules, inputs)
+    from .mutants.naming import judged, judging_mark
+
     trial = Trial(sandbox, check, rules, inputs)
-    started = time.perf_counter()
+    started, mark = time.perf_counter(), judging_mark(sandbox)
     tb, student_failure = "", ""
     try:
         with np.errstate(all="ignore"):   # (the check's arithmetic on a student's NaN or inf: judged, not warned of)
@@ -1050,7 +1046,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
                                        "the rest was graded - please tell your instructor"), ERROR
         tb = ""
         _log_grader_error(check, exc)
-    _judged(sandbox, time.perf_counter() - started)   # (what naming a failure may take follows it)
+    judged(sandbox, mark)   # (what naming the grading's failures may take follows it)
     _remember_check(check, trial)
     # a failure another of the student's functions causes is not this one's mistake, nor one an earlier
     # call's leftovers decided

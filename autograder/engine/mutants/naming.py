@@ -53,8 +53,8 @@ SPENT = "error model seconds"   # the key of the grading's counter of it (runner
 NAMING_SHARE = 1.0
 FLOOR_SECONDS = 3.0
 SHARES = {"error model": 0.6, "traced": 0.2, "inherited": 0.2}
-JUDGED = "judged seconds"   # the grading's [seconds its checks took to judge, checks judged, checks to judge,
-#                             seconds it took to start]
+JUDGED = "judged seconds"   # the grading's [CPU seconds its checks took to judge (judged), checks judged,
+#                             checks to judge, seconds it took to start]
 CALLS_PER_FUNCTION = 6     # the trial's last calls of a function that are compared
 PAIR_MUTANTS = 6           # the closest single mutants combined in pairs
 VARIANTS_PER_CALL = 5      # confirmation inputs derived from each failing call
@@ -919,13 +919,29 @@ def grading_seconds(trial, namer: str = "error model", most: float = GRADING_SEC
     return min(most, SHARES[namer] * max(FLOOR_SECONDS, NAMING_SHARE * forecast))
 
 
-def judged(shared: dict, seconds: float) -> None:
-    """Count one check judged in ``seconds`` (wall-clock, the verdict's own: not its naming) in the
-    grading's counter, where the runner keeps one (:data:`JUDGED`)."""
-    counter = shared.get(JUDGED)
-    if counter is not None:
-        counter[0] += seconds
-        counter[1] += 1
+def judging_mark(sandbox) -> tuple:
+    """Now, for :func:`judged`: wall-clock, this thread's CPU time and the sandbox's working processes'."""
+    working = getattr(sandbox, "working_pids", None)
+    pids = [pid for pid, *_ in working()] if working is not None else []
+    return time.monotonic(), time.thread_time(), {pid: evidence.cpu_seconds(pid) for pid in pids}
+
+
+def judged(sandbox, mark: tuple) -> None:
+    """Count one check judged since ``mark`` (:func:`judging_mark`; its verdict's own time, not its naming's)
+    in the grading's counter, where the runner keeps one (:data:`JUDGED`): CPU seconds of this thread and
+    the sandbox's processes, as a naming's :class:`Clock` counts them (a busy machine gives the same time to
+    name), never less than a :data:`WALL_SLACK`-th of the wall-clock time; wall-clock seconds where a
+    process's time cannot be read or its processes changed (a worker restarted)."""
+    counter = getattr(sandbox, "shared", {}).get(JUDGED)
+    if counter is None:
+        return
+    wall = time.monotonic() - mark[0]
+    _, thread, before = mark
+    after = judging_mark(sandbox)[2]
+    readable = before and set(before) == set(after) and None not in (*before.values(), *after.values())
+    cpu = time.thread_time() - thread + sum(after[pid] - before[pid] for pid in after) if readable else wall
+    counter[0] += max(cpu, wall / WALL_SLACK)
+    counter[1] += 1
 
 
 def confirming_extra(trial) -> float:
