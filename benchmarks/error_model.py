@@ -6,12 +6,12 @@ graded function carries a mutant of its own (the first of its mutants, simplest 
 that changes its own ``def``) so that most checks fail with wrong values -- naming's worst case.
 The failing one is graded twice (the first grading of a process also starts the helper
 process, which later gradings reuse) after one warm-up grading of the reference (ground truth
-cached). The issue's target: failing at most 2x the passing grading. What the student's own code
-takes is the student's (a mutant may loop longer than the reference): the grader's own seconds,
-the grading's less the student's calls', are shown beside, and their ratio. Naming's time follows
-the grading's (``naming.grading_seconds``: as long as the grading takes without it, at least
-``naming.FLOOR_SECONDS``): a lab whose passing grading is shorter than that floor is bounded by the
-floor, not the ratio.
+cached), and once more with no time to name. The issue's target: failing at most 2x the passing
+grading. What the student's own code takes is the student's (a mutant may loop longer than the
+reference): the wall-clock seconds of the student's calls are shown beside. Naming's time is
+bounded per failed check and per grading (``naming.GRADING_SECONDS`` for the error model and the
+repairs, ``traced.GRADING_SECONDS`` for the recordings, ``inherited.GRADING_SECONDS``); the authors'
+guide (docs/authors/judges.md, "Cost") says why those bounds are not cut to meet the ratio.
 
     python benchmarks/error_model.py                 # lab07, lab10 and the whole submission
     python benchmarks/error_model.py --lab lab08 --lab lab12
@@ -33,6 +33,7 @@ sys.path.insert(0, str(ROOT))
 os.environ.setdefault("AUTOGRADER_CACHE_DIR", tempfile.mkdtemp(prefix="error-model-bench-"))
 
 from autograder.cli import lanes_for  # noqa: E402
+from autograder.engine import inherited, traced  # noqa: E402
 from autograder.engine.mutants import naming  # noqa: E402
 from autograder.engine.mutants.operators import apply_edits  # noqa: E402
 from autograder.engine.registry import discover  # noqa: E402
@@ -61,13 +62,13 @@ def timed(folder: Path, keys: list[str], lanes: int = 1):
 
 
 def unnamed(folder: Path, keys: list[str], lanes: int):
-    """:func:`timed` with no time for naming (``naming.grading_seconds`` 0: every namer stops at once)."""
-    kept = naming.NAMING_SHARE, naming.FLOOR_SECONDS
-    naming.NAMING_SHARE = naming.FLOOR_SECONDS = 0.0
+    """:func:`timed` with no time for naming: every namer's time for the grading 0 (each stops at once)."""
+    kept = naming.GRADING_SECONDS, traced.GRADING_SECONDS, inherited.GRADING_SECONDS
+    naming.GRADING_SECONDS = traced.GRADING_SECONDS = inherited.GRADING_SECONDS = 0.0
     try:
         return timed(folder, keys, lanes)
     finally:
-        naming.NAMING_SHARE, naming.FLOOR_SECONDS = kept
+        naming.GRADING_SECONDS, traced.GRADING_SECONDS, inherited.GRADING_SECONDS = kept
 
 
 def measured(name: str, labs: list, lanes: int = 1) -> None:

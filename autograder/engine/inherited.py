@@ -49,8 +49,7 @@ When a check of ``f`` fails (its own value judged, the check calling no other AP
    grading: fix ``g`` first, then see what this check says"; the hints stay, each held to the
    student's code by :mod:`autograder.engine.claims` (a recipe the code already follows is not said).
 
-Time is bounded: :data:`CHECK_SECONDS` per failed check, per grading its share of the grading's naming time
-(:func:`~autograder.engine.mutants.naming.grading_seconds`, :data:`GRADING_SECONDS` at most; kept on
+Time is bounded: :data:`CHECK_SECONDS` per failed check, :data:`GRADING_SECONDS` per grading (kept on
 the sandbox), and half of what the exercise's budget and the submission's deadline leave; each
 helper run within what is left; the student's calls are billed to the check as
 any other call (the exercise's budget). A decision is kept for the grading, by the call's input and
@@ -71,7 +70,7 @@ from .compare import at_precision, magnitude
 from .hints import Code, code_of, read_code
 
 CHECK_SECONDS = 6.0       # for one failed check (the helper runs the reference a few times)
-GRADING_SECONDS = 15.0    # for one grading's failed checks together, at most
+GRADING_SECONDS = 15.0    # for one grading's failed checks together
 ROUNDS = 3                # reference runs per call (each adds the student's answers it needed)
 ASKED = 16                # the student's callee answers asked per call, at most
 PIXEL_SHARE = 0.001       # integer entries (pixels) that may differ by more than one level
@@ -372,8 +371,7 @@ def decide(trial, function: str, substitutes, seconds: float = CHECK_SECONDS) ->
     remaining = getattr(trial.sandbox, "remaining", lambda: float("inf"))()
     # at most half what the exercise's budget and the submission's deadline leave (this machine's seconds,
     # a naming's are the budgets' machine's): the checks after come first
-    clock = naming.work_clock(trial, min(seconds, naming.grading_seconds(trial, "inherited", GRADING_SECONDS) - spent[0],
-                                         remaining / 2 / naming.machine_pace()))
+    clock = naming.work_clock(trial, min(seconds, GRADING_SECONDS - spent[0], remaining / 2 / naming.machine_pace()))
     decisions = []
     try:
         for _, args, kwargs, answer in _judged_calls(trial, function):

@@ -176,10 +176,7 @@ def _grade(submission_path, selectors, limits, include_hidden, pictures, on_chec
                  for _ in range(min(len(sandboxes), len(hidden_calls)))]
         for sandbox in fresh:
             sandbox.start()
-        _one_naming_time(sandboxes + fresh, sum(
-            1 for phase in (public, hidden) for lab in phase for exercise, checks in lab for check in checks
-            if not check.advice and not _only_stub_called(check, _stubs(exercise, submission))),
-            time.perf_counter() - started)
+        _one_naming_time(sandboxes + fresh)
         graded: dict[str, ExerciseResult] = {}
         graded_hidden: dict[str, ExerciseResult] = {}
 
@@ -695,18 +692,17 @@ def _named_by_repair(verdict: Verdict, check: Check, trial: Trial, traceback_tex
         return verdict
 
 
-def _one_naming_time(sandboxes: list, to_judge: int, start: float) -> None:
-    """One time per grading for naming failures, whatever its lanes and phases: every worker's shared values
-    hold the same counters -- seconds only, nothing of a hidden check's: the time the grading's ``to_judge``
-    checks took to judge and the ``start`` seconds it took to begin, of which the namers have their shares
-    (:func:`autograder.engine.mutants.naming.grading_seconds`), and what each namer spent (the error model's
-    and repairs', the recordings', the inherited failures')."""
+def _one_naming_time(sandboxes: list) -> None:
+    """One time per grading for naming failures (the error model's and repairs',
+    ``naming.GRADING_SECONDS``; the inherited failures' own), whatever its lanes and phases: every
+    worker's shared values hold the same counters -- seconds only, nothing of a hidden check's; and the
+    recordings' own, :data:`autograder.engine.traced.GRADING_SECONDS`)."""
     from .inherited import SHARED_SECONDS
-    from .mutants.naming import JUDGED, SPENT
+    from .mutants.naming import SPENT
     from .traced import SPENT as TRACED
 
-    for key in (SPENT, SHARED_SECONDS, TRACED, JUDGED):
-        counter = [0.0, 0, to_judge, start] if key == JUDGED else [0.0]
+    for key in (SPENT, SHARED_SECONDS, TRACED):
+        counter = [0.0]
         for sandbox in sandboxes:
             sandbox.shared[key] = counter
 
@@ -1020,10 +1016,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     """
     if check.advice:
         return _run_advice(sandbox, check, modified, rules, inputs)
-    from .mutants.naming import judged, judging_mark
-
     trial = Trial(sandbox, check, rules, inputs)
-    started, mark = time.perf_counter(), judging_mark(sandbox)
+    started = time.perf_counter()
     tb, student_failure = "", ""
     try:
         with np.errstate(all="ignore"):   # (the check's arithmetic on a student's NaN or inf: judged, not warned of)
@@ -1046,7 +1040,6 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
                                        "the rest was graded - please tell your instructor"), ERROR
         tb = ""
         _log_grader_error(check, exc)
-    judged(sandbox, mark)   # (what naming the grading's failures may take follows it)
     _remember_check(check, trial)
     # a failure another of the student's functions causes is not this one's mistake, nor one an earlier
     # call's leftovers decided

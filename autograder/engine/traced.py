@@ -47,7 +47,7 @@ KINDS = "arrays of different kinds given to one OpenCV call"
 RECORDER, RECORDED = "__ag_seen__", "__ag_recorded__"   # (the names recorder.py defines)
 ARRAY_ATTRIBUTES = frozenset({"T", "shape", "size", "ndim", "real", "imag"})
 TRACE_SECONDS = 3.0
-GRADING_SECONDS = 8.0                 # the recordings' own time per grading at most (not the error model's: they come after it)
+GRADING_SECONDS = 8.0                 # the recordings' own time per grading (not the error model's: they come after it)
 SPENT = "traced seconds"
 CONFIRMATIONS = 3                     # departures of the student's values confirmed at most, per failed check
 
@@ -266,17 +266,9 @@ def recording_of(value) -> Recording | None:
     return Recording(values, _description(value.get("returned")), raised[:60] if isinstance(raised, str) else "")
 
 
-def _grading_seconds(trial) -> float:
-    """The recordings' time for this grading: their share of its naming time
-    (:func:`autograder.engine.mutants.naming.grading_seconds`), :data:`GRADING_SECONDS` at most."""
-    from .mutants.naming import grading_seconds
-
-    return grading_seconds(trial, "traced", GRADING_SECONDS)
-
-
 def record(trial, function: str, args, kwargs) -> Recording | None:
     """The recording of the student's ``function`` called with ``args``/``kwargs``, run in the
-    trial's companion sandbox within the recordings' time (:func:`_grading_seconds`); None when it cannot
+    trial's companion sandbox within the recordings' time (:data:`GRADING_SECONDS`); None when it cannot
     be had (kept per sandbox: a hidden check's recording is never a public one's)."""
     from .hints import code_of
 
@@ -291,7 +283,7 @@ def record(trial, function: str, args, kwargs) -> Recording | None:
         return cache[key]
     source = recording_source(code_of(trial), function)
     spent = sandbox.shared.setdefault(SPENT, [0.0])
-    seconds = min(TRACE_SECONDS, _grading_seconds(trial) - spent[0])
+    seconds = min(TRACE_SECONDS, GRADING_SECONDS - spent[0])
     if source is None or seconds <= 0.2:
         return None
     import time
@@ -1400,7 +1392,7 @@ def reference_recording(trial, function: str, args, kwargs) -> Recording | None:
         return cache[key]
     model = model_for(trial.lab)
     spent = trial.sandbox.shared.setdefault(SPENT, [0.0])
-    seconds = min(TRACE_SECONDS, _grading_seconds(trial) - spent[0])
+    seconds = min(TRACE_SECONDS, GRADING_SECONDS - spent[0])
     if model is None or seconds <= 0.2:
         return None
     source = recording_source(read_code(model.source), function)
@@ -1653,7 +1645,7 @@ def confirmed_departure(trial):
     expected = [None]   # (the reference's answers, asked once)
     spent = trial.sandbox.shared.setdefault(SPENT, [0.0])
     for tried, (form, fn, node, relation) in enumerate(explain_values(code, mine, theirs, function)):
-        if tried >= CONFIRMATIONS or _grading_seconds(trial) - spent[0] <= 0.2 or expected[0] is False:
+        if tried >= CONFIRMATIONS or GRADING_SECONDS - spent[0] <= 0.2 or expected[0] is False:
             return None
         started = time.monotonic()
         try:
@@ -1672,7 +1664,7 @@ def _confirmed(trial, code, model, node, relation, function, calls, expected_of)
     from .mutants.helper import HelperFailed
     from .mutants.naming import helper, release_helper
 
-    seconds = min(TRACE_SECONDS, _grading_seconds(trial) - trial.sandbox.shared.setdefault(SPENT, [0.0])[0])
+    seconds = min(TRACE_SECONDS, GRADING_SECONDS - trial.sandbox.shared.setdefault(SPENT, [0.0])[0])
     top = next((f for f in code.functions.values() if f.lineno <= node.lineno <= (f.end_lineno or f.lineno)), None)
     source = undone(top, node, relation) if top is not None else None   # (a nested def: the def holding it)
     if source is None or seconds <= 0.2:

@@ -43,18 +43,8 @@ from .helper import ERROR, Helper, HelperFailed
 from .operators import Mutant, _dotted, _parents, mutants_of, mutated_defs
 
 CHECK_SECONDS = 3.0        # the error model's time for one failed check
-GRADING_SECONDS = 10.0     # and for one grading (all its failed checks) at most; see grading_seconds
+GRADING_SECONDS = 10.0     # and for one grading (all its failed checks): bounds what failing everything costs
 SPENT = "error model seconds"   # the key of the grading's counter of it (runner: one per grading, every worker)
-# What failing everything costs follows what passing costs: a grading's failed checks share, for naming,
-# about as much time as the grading takes without it (NAMING_SHARE of it: its start, and its checks'
-# verdicts), and never less than FLOOR_SECONDS (a grading of one exercise's few fast checks still names
-# a slip or two). The error model and the repairs take their SHARES of it, the recordings of values theirs,
-# the inherited failures' comparisons theirs.
-NAMING_SHARE = 1.0
-FLOOR_SECONDS = 3.0
-SHARES = {"error model": 0.6, "traced": 0.2, "inherited": 0.2}
-JUDGED = "judged seconds"   # the grading's [CPU seconds its checks took to judge (judged), checks judged,
-#                             checks to judge, seconds it took to start]
 CALLS_PER_FUNCTION = 6     # the trial's last calls of a function that are compared
 PAIR_MUTANTS = 6           # the closest single mutants combined in pairs
 VARIANTS_PER_CALL = 5      # confirmation inputs derived from each failing call
@@ -904,53 +894,13 @@ def work_clock(trial, seconds: float) -> Clock:
     return Clock(seconds, processes if working is not None else None)
 
 
-def grading_seconds(trial, namer: str = "error model", most: float = GRADING_SECONDS) -> float:
-    """The time ``namer`` (a key of :data:`SHARES`) has for one grading's failed checks together, in the
-    budgets' machine's seconds: its share of what the grading takes without naming -- its start, and its
-    checks' verdicts forecast from those judged so far (their seconds times how many checks it has over how
-    many were judged: a check failing early has the whole grading's forecast) --, never less than its share
-    of :data:`FLOOR_SECONDS`, never more than ``most``. Outside a grading (no count kept: a naming called
-    on its own) ``most``."""
-    judged = getattr(getattr(trial, "sandbox", None), "shared", {}).get(JUDGED)
-    if not judged or not judged[1]:
-        return most
-    seconds, done, total, start = judged
-    forecast = (start + seconds / done * max(total, done)) / machine_pace()
-    return min(most, SHARES[namer] * max(FLOOR_SECONDS, NAMING_SHARE * forecast))
-
-
-def judging_mark(sandbox) -> tuple:
-    """Now, for :func:`judged`: wall-clock, this thread's CPU time and the sandbox's working processes'."""
-    working = getattr(sandbox, "working_pids", None)
-    pids = [pid for pid, *_ in working()] if working is not None else []
-    return time.monotonic(), time.thread_time(), {pid: evidence.cpu_seconds(pid) for pid in pids}
-
-
-def judged(sandbox, mark: tuple) -> None:
-    """Count one check judged since ``mark`` (:func:`judging_mark`; its verdict's own time, not its naming's)
-    in the grading's counter, where the runner keeps one (:data:`JUDGED`): CPU seconds of this thread and
-    the sandbox's processes, as a naming's :class:`Clock` counts them (a busy machine gives the same time to
-    name), never less than a :data:`WALL_SLACK`-th of the wall-clock time; wall-clock seconds where a
-    process's time cannot be read or its processes changed (a worker restarted)."""
-    counter = getattr(sandbox, "shared", {}).get(JUDGED)
-    if counter is None:
-        return
-    wall = time.monotonic() - mark[0]
-    _, thread, before = mark
-    after = judging_mark(sandbox)[2]
-    readable = before and set(before) == set(after) and None not in (*before.values(), *after.values())
-    cpu = time.thread_time() - thread + sum(after[pid] - before[pid] for pid in after) if readable else wall
-    counter[0] += max(cpu, wall / WALL_SLACK)
-    counter[1] += 1
-
-
 def confirming_extra(trial) -> float:
-    """Time a grading may add, beyond :func:`grading_seconds`, to confirm a change already found: as much as the
-    student's own calls have taken so far in it, up to :func:`grading_seconds` again. A submission whose own loops
+    """Time a grading may add, beyond :data:`GRADING_SECONDS`, to confirm a change already found: as much as the
+    student's own calls have taken so far in it, up to :data:`GRADING_SECONDS` again. A submission whose own loops
     are slow (a scanline DP in Python) takes that long to pass, and a change of it as long to confirm; a search
     that finds nothing stops within the grading's time, as before."""
     own = getattr(getattr(trial, "sandbox", None), "student_seconds", 0.0) or 0.0
-    return min(grading_seconds(trial), own / machine_pace())
+    return min(GRADING_SECONDS, own / machine_pace())
 
 
 def name_failure(trial, seconds: float = CHECK_SECONDS) -> Naming | None:
@@ -971,7 +921,7 @@ def _within_budget(trial, seconds: float, work, evidence=None) -> Naming | None:
     if model is None or not (trial.calls if evidence is None else evidence):
         return None
     spent = trial.sandbox.shared.setdefault(SPENT, [0.0])
-    seconds = min(seconds, grading_seconds(trial) - spent[0])
+    seconds = min(seconds, GRADING_SECONDS - spent[0])
     if seconds <= 0.2:
         return None
     clock = work_clock(trial, seconds)

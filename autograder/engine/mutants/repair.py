@@ -18,7 +18,7 @@ What it cannot name: a step that is missing (beyond a few insertions: an inversi
 the last coordinate, a conversion to radians), more than two slips, a mistake in another graded
 function (told as inherited), and a function whose right answers are random (RANSAC with its own
 samples). Time is bounded per failed check, and per grading together with the error model's
-naming (:func:`.naming.grading_seconds`).
+naming (:data:`.naming.GRADING_SECONDS`).
 """
 
 from __future__ import annotations
@@ -2400,22 +2400,21 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = No
     raised = naming.raised_answer(trial.raised[3]) if getattr(trial, "raised", None) else None
     if raised is not None and naming.error_kind(raised)[0] in naming.NO_MUTANT_RAISES:
         return None   # a name undefined (a notebook cell that raised), an import: no change of a value mends it
-    # One time per grading for naming by mutants and by repairs (naming.grading_seconds): what
+    # One time per grading for naming by mutants and by repairs (naming.GRADING_SECONDS): what
     # failing everything costs stays bounded by what passing costs.
     spent = trial.sandbox.shared.setdefault(naming.SPENT, [0.0])
     # A slow function (a pipeline on photographs) needs more than the check's time for the confirmation of a
     # change found (its reference and the change run on every confirmation input): that time is added to the
     # check's, as measured on this machine's own calls (a slower machine's calls take longer, its names alike).
     seconds += min(seconds, max(0.0, _confirming_seconds(trial) - RESERVE))
-    allowed = naming.grading_seconds(trial)
-    seconds = min(seconds, allowed - spent[0])
+    seconds = min(seconds, naming.GRADING_SECONDS - spent[0])
     if seconds <= 0.2:
         return None
     clock = naming.work_clock(trial, seconds)
     # (the search stays within the check's time; the confirmation of a change it found may take the
     # grading's time left too, and more for a slow submission -- a Python loop's variants run as slowly as the
     # student's own calls)
-    clock.spare = max(0.0, allowed - spent[0] - seconds) + naming.confirming_extra(trial)
+    clock.spare = max(0.0, naming.GRADING_SECONDS - spent[0] - seconds) + naming.confirming_extra(trial)
     try:
         student = _student_code(trial)
         if student is None:
