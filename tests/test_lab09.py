@@ -152,3 +152,26 @@ def test_the_points_behind_are_told_as_the_cause_of_a_raise_only_where_they_are(
     behind = [c for c in check_results(result, "lab09.ex1") if "behind" in c.name and c.score < c.max_score]
     assert behind, [c.name for c in check_results(result, "lab09.ex1")]
     assert ("the projection must not raise for them" in behind[0].message) is told, behind[0].message
+
+
+def test_an_order_of_the_object_points_is_told_only_where_it_gives_the_student_s_rms(tmp_path, no_naming):
+    """With nothing to overrule it (no repair runs: a grading whose naming time is spent), the calibration's
+    error is told as the object points' order only where points laid out in that order give the student's rms
+    on the views: a grid built for (rows, cols) is; a row coordinate left unscaled (2.6 px where the orders give
+    42) is not told an order."""
+    import textwrap
+
+    from autograder.labs.lab09 import OBJECT_POINTS_ORDER
+    from autograder.labs.mistakes.lab09 import MISTAKES
+
+    def calibration_checks(name):
+        exercise, source, _ = MISTAKES[name]
+        # (a source of its own: the table's own grading, with naming, is kept per process)
+        result = graded_case(MODULE, exercise, textwrap.dedent(source) + "\n# (naming off)\n")
+        return [c for c in check_results(result, exercise) if c.lost_points and "reprojection error" in c.message]
+
+    unscaled = calibration_checks("calibrate scaling one coordinate of the object points only")
+    assert unscaled and not any(c.mistake == OBJECT_POINTS_ORDER or "wrong order" in c.message for c in unscaled)
+    rows_first = calibration_checks("calibration grid built as (rows, cols)")
+    assert rows_first and all(c.mistake == OBJECT_POINTS_ORDER for c in rows_first)
+    assert "for the pattern read as (rows, cols)" in rows_first[0].message

@@ -2129,6 +2129,44 @@ NOT_FITTING = where_to_look(
     "board's points (the same view, the same order?).")
 
 
+# The object points laid out in another order than the corners cv2.findChessboardCorners gives (row by row,
+# x fastest): column by column, or for the pattern read as (rows, cols). Their calibration on the views' own
+# corners gives an rms of several pixels; a student's rms within ORDER_RMS_SHARE of one of those is told
+# that order -- others far off (a coordinate left unscaled: 2.6 px where the orders give 9 and more) are not.
+_OTHER_ORDERS = {
+    "column by column": lambda cols, rows: np.mgrid[0:cols, 0:rows].reshape(2, -1).T,
+    "for the pattern read as (rows, cols)": lambda cols, rows: np.mgrid[0:rows, 0:cols].T.reshape(-1, 2),
+}
+ORDER_RMS_SHARE = 0.25
+
+
+def _order_with_rms(images, pattern, square, rms: float) -> str:
+    """The other orders of the object points (keys of :data:`_OTHER_ORDERS`, joined by ", or ") whose calibration
+    on the views' own corners (found as the sheet's recipe finds them) gives about ``rms``; "" when none does,
+    or the corners are not found."""
+    import cv2
+
+    cols, rows = pattern
+    corners = []
+    for image in images:
+        grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
+        found, found_corners = cv2.findChessboardCorners(grey, (cols, rows))
+        if found:
+            corners.append(cv2.cornerSubPix(grey, found_corners, (5, 5), (-1, -1),
+                                            (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3)))
+    if len(corners) < 3:
+        return ""
+    size = (images[0].shape[1], images[0].shape[0])   # (width, height)
+    orders = []
+    for order, grid in _OTHER_ORDERS.items():
+        board = np.zeros((cols * rows, 3), np.float32)
+        board[:, :2] = grid(cols, rows) * square
+        theirs = cv2.calibrateCamera([board] * len(corners), corners, size, None, None)[0]
+        if abs(theirs - rms) <= ORDER_RMS_SHARE * theirs:
+            orders.append(order)
+    return ", or ".join(orders)   # (both give about the same rms: y fastest either way)
+
+
 def judge_calibration(t: Trial, images, K_true, pattern, square=truth.CALIBRATION_SQUARE):
     """Calibrate on rendered views of a board with ``pattern`` inner corners, rendered with ``K_true``."""
     what, K, dist, rms = calibration_result(t, images, pattern, square)
@@ -2147,15 +2185,16 @@ def judge_calibration(t: Trial, images, K_true, pattern, square=truth.CALIBRATIO
         # (and the order is a guess: a change of the code confirmed to mend it -- a coordinate left unscaled
         # in a loop building them row by row -- takes its place, and the recipe's hint with it)
         ordered = OBJECT_POINTS_ROW_BY_ROW.found(code_of(t).reachable(["calibrate"]))
-        # (the order is inferred from the error alone, and where the points are built row by row no cause is: a
-        # slip read in the code -- every view merged into one -- or a change confirmed takes their place)
+        # (where the points are built row by row no cause is told: a slip read in the code -- every view merged
+        # into one -- or a change confirmed takes their place; elsewhere an order is told only where the points
+        # laid out in it give the student's rms on these views: a coordinate left unscaled is no order)
+        order = "" if ordered else _order_with_rms(images, pattern, square, rms)
         t.fail(f"{what}: the reprojection error is {rms:.2f} px (a good calibration on these clean "
                "views has < 0.1 px)"
-               + (": no camera puts the object points on the corners as they are paired." + NOT_FITTING
-                  if ordered else ": the object points do not "
-                  f"correspond to the detected corners: it looks like {OBJECT_POINTS_ORDER} (column by column, say, "
-                  "or for another pattern_size)."),
-               hint="" if ordered else OBJECT_POINTS_HINT.said(t), mistake="" if ordered else OBJECT_POINTS_ORDER)
+               + (": the object points do not correspond to the detected corners: it looks like "
+                  f"{OBJECT_POINTS_ORDER} ({order}: object points laid out so give this rms on these views)."
+                  if order else ": no camera puts the object points on the corners as they are paired." + NOT_FITTING),
+               hint=OBJECT_POINTS_HINT.said(t) if order else "", mistake=OBJECT_POINTS_ORDER if order else "")
     if np.abs(K[:2, 2] - K_true[1::-1, 2]).max() < 3.0 and c_error.max() > 3.0:
         # (the image size given rows first does not do it -- cv2.calibrateCamera only starts from it -- the corners'
         # x and y exchanged, or the view transposed, do: audit of 2026-12-06)
