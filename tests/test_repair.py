@@ -5766,6 +5766,9 @@ def test_a_pair_an_opencv_call_reads_in_its_own_order_is_told_why(shown, code, t
     ((3, "pts.mean(axis=1)", "pts.mean(axis=0)"), "", "one value per column"),
     ((3, "pts.mean(axis=1)", "pts.sum(axis=0)"), "", ""),                # (more than the axis changed)
     ((3, "Vt[:, 0]", "Vt[-1, :]"), "U, S, Vt = np.linalg.svd(A)", ""),   # (another index: not the transpose)
+    # (a whole statement shown: 06l 08/02 was told "`h = Vt[-1]` is row -1 of `h = Vt`")
+    ((3, "h = Vt[:, -1]", "h = Vt[-1, :]"), "U, S, Vt = np.linalg.svd(A)", "V transposed"),
+    ((3, "c = pts[:, 2]", "c = pts[2]"), "", "`pts[2]` is row 2 of `pts`, `pts[:, 2]` its column"),
 ])
 def test_a_column_taken_for_a_row_of_svd_is_told_why(shown, code, told):
     fn = ast.parse(f"def f(A, P):\n    {code or 'pass'}\n    return 0\n").body[0]

@@ -316,8 +316,9 @@ _FLOAT_WHY = (" (it makes the arrays float: arithmetic on uint8 images wraps aro
               "rounds every result to a whole number)")
 
 
-_COLUMN_TO_ROW = re.compile(r"(?P<base>.+)\[\s*:\s*,\s*(?P<i>-?\d+)\s*\]")
-_ROW = re.compile(r"(?P<base>.+)\[\s*(?P<i>-?\d+)\s*(?:,\s*:\s*)?\]")
+# (the subscripted value is an expression, never a statement's text: `h = Vt` is no base)
+_COLUMN_TO_ROW = re.compile(r"(?P<base>[^=]+?)\[\s*:\s*,\s*(?P<i>-?\d+)\s*\]")
+_ROW = re.compile(r"(?P<base>[^=]+?)\[\s*(?P<i>-?\d+)\s*(?:,\s*:\s*)?\]")
 
 
 _AXIS = re.compile(r"\baxis\s*=\s*(-?\d+)")
@@ -388,10 +389,12 @@ def _changed_subscripts(before: str, after: str) -> tuple | None:
     """The one subscript ``before`` writes that ``after`` does not, and the one in its place (`pts[2]` and
     `pts[:, 2]` of `np.mean(pts[2])` and `np.mean(pts[:, 2])`); None when not exactly one each."""
     def subscripts(text) -> set:
-        try:
-            return {ast.unparse(n) for n in ast.walk(parse(text, mode="eval")) if isinstance(n, ast.Subscript)}
-        except (SyntaxError, ValueError, RecursionError):
-            return set()
+        for mode in ("eval", "exec"):   # (an expression, or a statement: `h = Vt[:, -1]`)
+            try:
+                return {ast.unparse(n) for n in ast.walk(parse(text, mode=mode)) if isinstance(n, ast.Subscript)}
+            except (SyntaxError, ValueError, RecursionError):
+                continue
+        return set()
     gone, made = subscripts(before), subscripts(after)
     gone, made = gone - made, made - gone
     return (gone.pop(), made.pop()) if len(gone) == len(made) == 1 else None
