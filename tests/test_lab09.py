@@ -175,3 +175,16 @@ def test_an_order_of_the_object_points_is_told_only_where_it_gives_the_student_s
     rows_first = calibration_checks("calibration grid built as (rows, cols)")
     assert rows_first and all(c.mistake == OBJECT_POINTS_ORDER for c in rows_first)
     assert "for the pattern read as (rows, cols)" in rows_first[0].message
+
+
+def test_circles_drawn_at_y_x_are_told_so_by_the_check_of_points_just_off_the_image():
+    """Its point in view lies on the diagonal, where (y, x) is (x, y): circles drawn at (y, x) miss only the
+    points just off the image, which were told "not drawn", as if left out (06l 09/04)."""
+    from autograder.labs.lab09 import XY_SWAPPED
+    from autograder.labs.mistakes.lab09 import MISTAKES
+
+    exercise, source, _ = MISTAKES["circles at (y, x)"]
+    [off] = [c for c in check_results(graded_case(MODULE, exercise, source), exercise)
+             if c.name.startswith("draw_points draws the part in view of a circle centred just off the image")]
+    assert off.lost_points and off.mistake == XY_SWAPPED and "drawn at (y, x)" in off.message, off.message
+    assert "is not drawn" not in off.message

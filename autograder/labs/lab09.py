@@ -1304,6 +1304,10 @@ def _discs_smaller(got, image, expected, far, radius) -> str:
                     "in pixels)")
 
 
+DRAWN_AT_YX = measured("the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = (column, row).")
+XY_SWAPPED = "x and y (column and row) are swapped"
+
+
 def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 255), show=True, redraw=None):
     """Judge ``got``, ``image`` with filled circles of ``radius`` and ``color`` drawn at ``pts``;
     ``redraw(r)``, the same drawing asked with radius r, tells how a wrong radius comes about."""
@@ -1332,8 +1336,7 @@ def judge_drawing(t: Trial, what: str, got, image, pts, radius=3, color=(0, 0, 2
     pts = np.asarray(pts, float).reshape(-1, 2)
     height, width = image.shape[:2]
     for moved, said, mistake in (
-            (pts[:, ::-1], measured("the circles are drawn at (y, x): cv2.circle takes the centre as (x, y) = "
-                                    "(column, row)."), "x and y (column and row) are swapped"),
+            (pts[:, ::-1], DRAWN_AT_YX, XY_SWAPPED),
             (np.column_stack([pts[:, 0], height - 1 - pts[:, 1]]),
              measured("the circles are drawn upside down, at (x, h - 1 - y): y counted up from the bottom row as in a "
                       "plot; in an image y is the row, counted down from the top."),
@@ -1724,6 +1727,11 @@ def draw_partly_in_view(t):
     if shares[0] >= 0.97 and min(shares[1:]) < 0.97:   # (the point in view drawn: this check's question only)
         missing = [f"({x:g}, {y:g})" for (x, y), share in zip(pts[1:], shares[1:]) if share < 0.97]
         t.images(what, "the circles of points just off the image reach into it", input=image, yours=got)
+        # (the point in view sits on the diagonal: circles drawn at (y, x) miss only the others -- 06l 09/04 was
+        # told their parts in view are not drawn, as if left out)
+        at_yx = [truth.circle_regions(image.shape, pts[i:i + 1, ::-1], 8)[0] for i in (1, 2)]
+        if all(core.any() and painted[core].mean() > 0.9 for core in at_yx):
+            t.fail(f"{what}: {DRAWN_AT_YX}", mistake=XY_SWAPPED)
         bound = _bounds_test(code_of(t).reachable(["draw_points"]))
         t.fail(measured(f"{what}: the part of the circle{'s' if len(missing) > 1 else ''} at {', '.join(missing)} "
                         "inside the image is not drawn: a circle centred just off the image reaches into it, and "
