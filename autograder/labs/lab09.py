@@ -2152,8 +2152,21 @@ def _order_with_rms(images, pattern, square, rms: float) -> str:
     """The other orders of the object points (keys of :data:`_OTHER_ORDERS`, joined by ", or ") whose calibration
     on the views' own corners (found as the sheet's recipe finds them) gives about ``rms``; "" when none does,
     or the corners are not found."""
+    orders = _orders_rms(images, pattern, square)
+    return ", or ".join(order for order, theirs in orders.items()
+                        if abs(theirs - rms) <= ORDER_RMS_SHARE * theirs)   # (both alike: y fastest either way)
+
+
+_ORDERS_RMS: dict = {}   # the views' fingerprint -> {order: rms}: a grading's failing checks share the views
+
+
+def _orders_rms(images, pattern, square) -> dict:
+    """{order: the rms of cv2.calibrateCamera with the object points in that order} on ``images``' corners."""
     import cv2
 
+    key = fingerprint(list(images), tuple(pattern), float(square))
+    if key in _ORDERS_RMS:
+        return _ORDERS_RMS[key]
     cols, rows = pattern
     corners = []
     for image in images:
@@ -2162,17 +2175,17 @@ def _order_with_rms(images, pattern, square, rms: float) -> str:
         if found:
             corners.append(cv2.cornerSubPix(grey, found_corners, (5, 5), (-1, -1),
                                             (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3)))
-    if len(corners) < 3:
-        return ""
-    size = (images[0].shape[1], images[0].shape[0])   # (width, height)
-    orders = []
-    for order, grid in _OTHER_ORDERS.items():
-        board = np.zeros((cols * rows, 3), np.float32)
-        board[:, :2] = grid(cols, rows) * square
-        theirs = cv2.calibrateCamera([board] * len(corners), corners, size, None, None)[0]
-        if abs(theirs - rms) <= ORDER_RMS_SHARE * theirs:
-            orders.append(order)
-    return ", or ".join(orders)   # (both give about the same rms: y fastest either way)
+    orders = {}
+    if len(corners) >= 3:
+        size = (images[0].shape[1], images[0].shape[0])   # (width, height)
+        for order, grid in _OTHER_ORDERS.items():
+            board = np.zeros((cols * rows, 3), np.float32)
+            board[:, :2] = grid(cols, rows) * square
+            orders[order] = float(cv2.calibrateCamera([board] * len(corners), corners, size, None, None)[0])
+    if len(_ORDERS_RMS) >= 16:
+        _ORDERS_RMS.clear()
+    _ORDERS_RMS[key] = orders
+    return orders
 
 
 def judge_calibration(t: Trial, images, K_true, pattern, square=truth.CALIBRATION_SQUARE):
