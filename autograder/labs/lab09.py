@@ -2171,7 +2171,9 @@ def _orders_rms(images, pattern, square) -> dict:
     corners = []
     for image in images:
         grey = cv2.cvtColor(image, cv2.COLOR_BGR2GRAY) if image.ndim == 3 else image
-        found, found_corners = cv2.findChessboardCorners(grey, (cols, rows))
+        # (a view without the whole board is given up at once: hidden views include one)
+        found, found_corners = cv2.findChessboardCorners(grey, (cols, rows), flags=cv2.CALIB_CB_ADAPTIVE_THRESH
+                                                         | cv2.CALIB_CB_NORMALIZE_IMAGE | cv2.CALIB_CB_FAST_CHECK)
         if found:
             corners.append(cv2.cornerSubPix(grey, found_corners, (5, 5), (-1, -1),
                                             (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 1e-3)))
@@ -2213,7 +2215,8 @@ def judge_calibration(t: Trial, images, K_true, pattern, square=truth.CALIBRATIO
         t.fail(f"{what}: the reprojection error is {rms:.2f} px (a good calibration on these clean "
                "views has < 0.1 px)"
                + (": the object points do not correspond to the detected corners: it looks like "
-                  f"{OBJECT_POINTS_ORDER} ({order}: object points laid out so give this rms on these views)."
+                  f"{OBJECT_POINTS_ORDER} ({order}: object points laid out that way give about this reprojection error "
+                  "on these views)."
                   if order else ": no camera puts the object points on the corners as they are paired." + NOT_FITTING),
                hint=OBJECT_POINTS_HINT.said(t) if order else "", mistake=OBJECT_POINTS_ORDER if order else "")
     if np.abs(K[:2, 2] - K_true[1::-1, 2]).max() < 3.0 and c_error.max() > 3.0:

@@ -360,15 +360,10 @@ def _opencv_order_why(before: str, after: str, fn) -> str:
     """Why a change that reverses a pair (`[::-1]` taken out or put in, two items exchanged) mends, where the pair
     is what an OpenCV call of ``fn`` reads as a size (width, height) or a board's pattern (columns, rows); ""
     otherwise."""
-    def items(text):
-        try:
-            node = parse(text, mode="eval").body
-        except (SyntaxError, ValueError, RecursionError):
-            return None
-        return node
-    b, a = items(before), items(after)
+    b, a = _parsed(before, ("eval",)), _parsed(after, ("eval",))
     if b is None or a is None:
         return ""
+    b, a = b.body, a.body
     reversal = lambda n: isinstance(n, ast.Subscript) and ast.unparse(n.slice) == "::-1"  # noqa: E731
     swapped = isinstance(b, ast.Tuple) and isinstance(a, ast.Tuple) and len(b.elts) == len(a.elts) == 2 \
         and ast.unparse(b.elts[0]) == ast.unparse(a.elts[1]) and ast.unparse(b.elts[1]) == ast.unparse(a.elts[0])
@@ -385,16 +380,22 @@ def _opencv_order_why(before: str, after: str, fn) -> str:
     return ""
 
 
+def _parsed(text: str, modes: tuple):
+    """``text`` parsed in the first of ``modes`` ("eval", "exec") that reads it; None when none does."""
+    for mode in modes:
+        try:
+            return parse(text, mode=mode)
+        except (SyntaxError, ValueError, RecursionError):
+            continue
+    return None
+
+
 def _changed_subscripts(before: str, after: str) -> tuple | None:
     """The one subscript ``before`` writes that ``after`` does not, and the one in its place (`pts[2]` and
     `pts[:, 2]` of `np.mean(pts[2])` and `np.mean(pts[:, 2])`); None when not exactly one each."""
     def subscripts(text) -> set:
-        for mode in ("eval", "exec"):   # (an expression, or a statement: `h = Vt[:, -1]`)
-            try:
-                return {ast.unparse(n) for n in ast.walk(parse(text, mode=mode)) if isinstance(n, ast.Subscript)}
-            except (SyntaxError, ValueError, RecursionError):
-                continue
-        return set()
+        tree = _parsed(text, ("eval", "exec"))   # (an expression, or a statement: `h = Vt[:, -1]`)
+        return set() if tree is None else {ast.unparse(n) for n in ast.walk(tree) if isinstance(n, ast.Subscript)}
     gone, made = subscripts(before), subscripts(after)
     gone, made = gone - made, made - gone
     return (gone.pop(), made.pop()) if len(gone) == len(made) == 1 else None
