@@ -2716,7 +2716,7 @@ def judge_last_column(t: Trial, what: str, got, scene):
         t.fail(measured(f"{what}: the last column (x = {got.shape[1] - 1}), where the backtracking starts, is wrong "
                         f"in {bad:.0%} of the rows (your values there: {shown}; true disparities "
                         f"{truth_column[known].min():.1f} to {truth_column[known].max():.1f}), while the map as a "
-                        f"whole is right in {1.0 - whole:.0%} of its pixels."), mistake=BACKTRACKING)   # (where in the code: not known)
+                        f"whole is right in {1.0 - whole:.0%} of the pixels judged."), mistake=BACKTRACKING)   # (where in the code: not known)
 
 
 @ex5.check("dp_stereo beats block matching where the texture is weak", points=4, timeout=STEREO_TIMEOUT)
