@@ -5749,6 +5749,15 @@ def test_a_float_conversion_missing_from_a_dp_is_told_with_why_it_mends(tmp_path
      "found, corners = cv2.findChessboardCorners(grey, tuple(pattern_size)[::-1])", "(columns, rows)"),
     ((3, "(h, w)", "(w, h)"), "return cv2.warpAffine(image, M, (h, w))", "(width, height)"),
     ((3, "(h, w)", "(w, h)"), "return np.zeros((h, w))", ""),             # (no OpenCV call reads the pair)
+    # (a whole statement shown: the pair its names make, or the name it binds, is what the call reads)
+    ((3, "w, h = image.shape[:2]", "h, w = image.shape[:2]"), "return cv2.warpAffine(image, M, (w, h))",
+     "(width, height)"),
+    ((3, "size = (h, w)", "size = (w, h)"), "return cv2.resize(image, size)", "(width, height)"),
+    ((3, "pattern = pattern_size[::-1]", "pattern = pattern_size"),
+     "found, corners = cv2.findChessboardCorners(grey, pattern)", "(columns, rows)"),
+    ((3, "w, h = image.shape[:2]", "h, w = image.shape[:2]"), "return np.zeros((h, w))", ""),
+    ((3, "size = (h, w)", "size = (w, h)"), "return cv2.resize(image, (h, w))", ""),   # (the call reads not `size`)
+    ((3, "a, b = x, y", "b, a = x, y"), "return cv2.resize(image, (w, h))", ""),      # (another pair)
 ])
 def test_a_pair_an_opencv_call_reads_in_its_own_order_is_told_why(shown, code, told):
     fn = ast.parse(f"def f(grey, image, M, pattern_size, h, w):\n    {code}\n").body[0]

@@ -359,19 +359,43 @@ _PATTERN_CALLS = {"findChessboardCorners", "findChessboardCornersSB", "drawChess
 def _opencv_order_why(before: str, after: str, fn) -> str:
     """Why a change that reverses a pair (`[::-1]` taken out or put in, two items exchanged) mends, where the pair
     is what an OpenCV call of ``fn`` reads as a size (width, height) or a board's pattern (columns, rows); ""
-    otherwise."""
+    otherwise. A whole statement shown (`h, w = image.shape[:2]` for `w, h = ...`, `size = (w, h)` for
+    `size = (h, w)`): the pair its names make, or the name it binds, is what the call reads."""
     b, a = _parsed(before, ("eval",)), _parsed(after, ("eval",))
-    if b is None or a is None:
+    if b is not None and a is not None:
+        return _opencv_reader(fn, lambda arg: ast.unparse(arg) == before) if _reverses(b.body, a.body) else ""
+    b, a = _parsed(before, ("exec",)), _parsed(after, ("exec",))
+    if b is None or a is None or len(b.body) != 1 or len(a.body) != 1 \
+            or not all(isinstance(s, ast.Assign) and len(s.targets) == 1 for s in (b.body[0], a.body[0])):
         return ""
-    b, a = b.body, a.body
+    (target_b,), (target_a,) = b.body[0].targets, a.body[0].targets
+    value_b, value_a = b.body[0].value, a.body[0].value
+    if ast.dump(value_b) == ast.dump(value_a) and _reverses(target_b, target_a) \
+            and all(isinstance(e, ast.Name) for e in target_b.elts):
+        names = {e.id for e in target_b.elts}   # (the pair bound in another order: a call reads the two names)
+        return _opencv_reader(fn, lambda arg: isinstance(arg, ast.Tuple) and len(arg.elts) == 2
+                              and {ast.unparse(e) for e in arg.elts} == names)
+    if ast.dump(target_b) == ast.dump(target_a) and isinstance(target_b, ast.Name) and _reverses(value_b, value_a):
+        return _opencv_reader(fn, lambda arg: isinstance(arg, ast.Name) and arg.id == target_b.id)
+    return ""
+
+
+def _reverses(b, a) -> bool:
+    """Whether the node ``a`` is ``b`` with its pair in the other order: two items exchanged, or `[::-1]`
+    taken out or put in."""
     reversal = lambda n: isinstance(n, ast.Subscript) and ast.unparse(n.slice) == "::-1"  # noqa: E731
     swapped = isinstance(b, ast.Tuple) and isinstance(a, ast.Tuple) and len(b.elts) == len(a.elts) == 2 \
-        and ast.unparse(b.elts[0]) == ast.unparse(a.elts[1]) and ast.unparse(b.elts[1]) == ast.unparse(a.elts[0])
-    if not (swapped or (reversal(b) and ast.unparse(b.value) == after) or (reversal(a) and ast.unparse(a.value) == before)):
-        return ""
+        and ast.unparse(b.elts[0]) == ast.unparse(a.elts[1]) and ast.unparse(b.elts[1]) == ast.unparse(a.elts[0]) \
+        and ast.unparse(b.elts[0]) != ast.unparse(b.elts[1])
+    return swapped or (reversal(b) and ast.dump(b.value) == ast.dump(a)) or (reversal(a) and ast.dump(a.value) == ast.dump(b))
+
+
+def _opencv_reader(fn, reads) -> str:
+    """What the first OpenCV call of ``fn`` given an argument ``reads`` accepts reads it as: a board's pattern
+    or a size, said in its own order; "" where no such call reads it."""
     for call in (n for n in ast.walk(fn) if isinstance(n, ast.Call)):
         name = ast.unparse(call.func).rsplit(".", 1)[-1]
-        if not any(ast.unparse(arg) == before for arg in list(call.args) + [k.value for k in call.keywords]):
+        if not any(reads(arg) for arg in list(call.args) + [k.value for k in call.keywords]):
             continue
         if name in _PATTERN_CALLS:
             return f" (cv2.{name} reads a pattern as (columns, rows) of inner corners: the API's pattern_size as given)"
