@@ -200,7 +200,9 @@ def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
     image by ``d`` columns, compute the per-pixel squared difference, and sum it
     over blocks with a box filter (``cv2.boxFilter`` or ``cv2.blur``). That gives
     a cost volume ``(max_disparity + 1, H, W)``; ``np.argmin`` over its first
-    axis is the disparity map.
+    axis is the disparity map. The ``d`` columns a shift brings in on the left
+    have no partner in the right image: an infinite cost there keeps a pixel
+    ``x`` from matching ``d > x`` (recommended, with a tip; the band is not judged).
 
     The lab sheet's ``cv2.StereoBM`` (``cost="ssd"`` only) needs three careful
     steps: ``numDisparities`` must be a multiple of 16, so round

@@ -2,8 +2,9 @@
 
 A left pixel ``x`` has its match at ``x - d`` in the right image, whose first column is 0, so a
 disparity above ``x`` (+ half a pixel) points where the right image has no pixel. The checks
-(``judge_left_strip`` in ``autograder/labs/lab12.py``) accept up to ``LEFT_STRIP_ALLOWED`` of the
-strip ``x < max_disparity`` so; this script prints the evidence, per scene the checks use:
+(``left_strip_tip`` in ``autograder/labs/lab12.py``, a tip worth no points: the API leaves the band open) allow up
+to ``LEFT_STRIP_ALLOWED`` of the strip ``x < max_disparity`` so; this script prints the evidence, per scene the
+checks use:
 
 - the legitimate matchers (``fixtures.make_lab12_figures.legitimate_matchers``: the reference,
   a Gaussian prefilter, SAD, the lab sheet's ``cv2.StereoBM``), ``cv2.StereoBM`` with nothing

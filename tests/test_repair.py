@@ -4795,11 +4795,11 @@ def test_a_change_mending_landscape_images_only_is_not_told(tmp_path):
     assert repair._turned(("rotate", (np.zeros((30, 30), np.uint8), 45), {})) == []
 
 
-def test_a_slip_made_at_exactly_two_places_is_mended_at_both_beside_a_checks_own_name(tmp_path):
+def test_costs_without_a_partner_marked_nan_get_a_tip_not_a_repair(tmp_path):
     """The SSD volume made and its cells without a partner marked with NaN, which np.argmin picks first (the
-    blind set 1204e's 12/04): the check names the effect (disparities left of the right image); the change told
-    beside it is NaN -> inf at both places, the table's making and the border's marking (neither alone mends it:
-    the cells past the image's width stay NaN on a small image)."""
+    blind set 1204e's 12/04): only the left band, where x - d leaves the right image, is changed -- a band the
+    skeleton leaves out of every judged rate and the API leaves open (the blind legitimate set 1206m): a tip
+    naming it, no point lost, so no repair is searched."""
     folder = edited_reference(tmp_path, "lab12_stereo", (
         "    costs = np.full((max_disparity + 1, height, width), np.inf)\n"
         "    for d in range(min(max_disparity, width - 1) + 1):\n"
@@ -4812,11 +4812,11 @@ def test_a_slip_made_at_exactly_two_places_is_mended_at_both_beside_a_checks_own
         "        costs[d] = _box_mean(squared, block_size)\n"
         "        costs[d, :, :d] = np.nan "))
     result = grade(folder, ["lab12.ex4"], pictures="none", include_hidden=False)
-    failed = [c for c in check_results(result, "lab12.ex4") if c.score < c.max_score]
-    told = [c for c in failed if "Trying small changes" in c.message]
-    assert told, [c.message for c in failed]
-    assert "`costs[d, :, :d] = np.nan` to `costs[d, :, :d] = np.inf`" in told[0].message
-    assert "np.nan)` to `np.full((max_disparity + 1, height, width), np.inf)`" in told[0].message
+    checks = check_results(result, "lab12.ex4")
+    assert all(c.score == c.max_score for c in checks), [c.message for c in checks if c.score < c.max_score]
+    assert any(c.advice and "left of the right image's first column" in c.message for c in checks), \
+        [c.message for c in checks if c.advice]
+    assert not any("Trying small changes" in c.message for c in checks)
 
 
 def test_a_name_given_where_it_makes_a_call_take_one_name_twice_is_no_fix():

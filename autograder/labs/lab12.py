@@ -306,6 +306,8 @@ def judge_disparity(t: Trial, what: str, got, scene, reference_bad: float, *, ag
     fraction = (allowed + FADE - bad) / FADE  # partial credit near the accepted rate
     try:
         diagnose_disparity(t, what, got, scene, allowed, again, judged, mistakes)
+        if what.startswith("block_matching"):
+            name_left_image_shifted(t, what, got, scene.max_disparity)
         if NCC_CALL in what:
             name_ncc_normalisation(t, what)
         if probe is not None:
@@ -1738,10 +1740,9 @@ def block_matching_form(t):
     scene = truth.scene("random_dots")
     # A multiple of 16, so the lab sheet's cv2.StereoBM (numDisparities % 16 == 0) meets the
     # range as it is; the scene's disparities stay below it.
-    max_disparity = 16
+    max_disparity = FORM_DISPARITY
     what = f"block_matching(left, right, max_disparity={max_disparity})"
-    got = expect_disparity(t, what, t.call("block_matching", np.array(scene.left), np.array(scene.right),
-                                           max_disparity=max_disparity), scene)
+    got = expect_disparity(t, what, random_dots_map(t), scene)
     got = t.expect_array(got, what, kind="f")
     with np.errstate(invalid="ignore"):
         if np.any(got > max_disparity + 1e-9):
@@ -1759,22 +1760,43 @@ def block_matching_form(t):
                              instead="your code already compares disparities with max_disparity: check that "
                                      "the comparison is made on the map returned (after StereoBM's division "
                                      "by 16)").said(t))
-    # The left strip is judged on a map right elsewhere (within what the quality check gives credit
-    # for): a map wrong all over (a search in the wrong direction) is told why by the quality checks.
-    rest = truth.bad_pixel_rate(got, truth.band(scene.judged, max_disparity, 9), scene.threshold)
-    if rest <= bm_figures("random_dots")["legitimate"] + SLACK + FADE:
-        judge_left_strip(t, what, got, max_disparity)
     # (and a pair narrower than the search range, as the API allows: a map of its size, no error)
     left, right = (np.ascontiguousarray(np.array(image)[:, :12]) for image in (scene.left, scene.right))
     narrow = f"block_matching(left, right, max_disparity={max_disparity}) on a pair 12 pixels wide"
     t.expect_array(t.call("block_matching", left, right, max_disparity=max_disparity), narrow, shape=left.shape[:2],
                    kind="f")
-    return passed(measured("a float map in 0..max_disparity; no disparity points left of the right image; a pair "
-                           "narrower than the search range answered in its size"))
+    return passed(measured("a float map in 0..max_disparity; a pair narrower than the search range answered in "
+                           "its size"))
+
+
+FORM_DISPARITY = 16   # the form check's search range: a multiple of 16, as cv2.StereoBM needs
+
+
+def random_dots_map(t: Trial):
+    """block_matching on the random-dot planes with max_disparity=16: one call, judged by the form check
+    and read by the left strip's tip."""
+    scene = truth.scene("random_dots")
+    return t.shared(("block_matching", "random_dots", FORM_DISPARITY), lambda: t.call(
+        "block_matching", np.array(scene.left), np.array(scene.right), max_disparity=FORM_DISPARITY))
+
+
+@ex4.advice("block_matching gives no disparity past the left edge of the right image (x - d < 0)")
+def left_strip_advice(t):
+    # (told of a map right elsewhere, within what the quality check gives credit for: a map wrong all over --
+    # a search in the wrong direction -- is told why by the graded checks)
+    scene = truth.scene("random_dots")
+    got = np.asarray(random_dots_map(t))
+    if got.shape != np.asarray(scene.left).shape[:2] or got.dtype.kind not in "fiu":
+        return
+    rest = truth.bad_pixel_rate(got, truth.band(scene.judged, FORM_DISPARITY, 9), scene.threshold)
+    if rest <= bm_figures("random_dots")["legitimate"] + SLACK + FADE:
+        left_strip_tip(t, f"block_matching(left, right, max_disparity={FORM_DISPARITY})", got, FORM_DISPARITY)
 
 
 # A left pixel x has its match at x - d in the right image, whose first column is 0: d <= x (+ half a
-# pixel, the pixel-centre convention); the API leaves a pixel without a partner invalid. Measured on the
+# pixel, the pixel-centre convention). The API leaves that band open (the skeleton: the band where x - d
+# leaves the right image is not judged), so a map past it there gets a tip, no point lost (the blind set
+# 1206m's legitimate NCC and DP, the right image's first column repeated, lost 1.5 and 2 points). Measured on the
 # public scenes (benchmarks/left_strip_block_matching.py): the reference (SSD, NCC), SAD, a Gaussian
 # prefilter, cv2.StereoBM (clipped or not) and a loop over the columns x >= d put no pixel past its
 # column; searches against a right image padded or wrapped round (np.roll, np.pad with zeros, edge or
@@ -1783,7 +1805,6 @@ def block_matching_form(t):
 PAST_THE_EDGE = 0.5     # px beyond x: still the right image's first pixel
 LEFT_STRIP_ALLOWED = 0.01   # share of the strip's pixels (legitimate matchers: none)
 PAST_THE_EDGE_MISTAKE = "disparities point left of the right image (x - d < 0) along the left border"
-LEFT_IMAGE_SHIFTED = "the left image shifted where the right one belongs (a map of the right image's pixels)"
 ROLLED = calls("np.roll")
 
 
@@ -1844,6 +1865,29 @@ def _left_image_rolled_back(function) -> str:
     return ""
 
 
+LEFT_IMAGE_SHIFTED = "the left image shifted where the right one belongs (a map of the right image's pixels)"
+
+
+def name_left_image_shifted(t: Trial, what: str, got, max_disparity: int):
+    """Fail naming the left image shifted back (`np.roll(L, -d)`, read from the code) for a failing map whose left
+    strip gets disparities above their column x (measured): the left pixel x + d compared with the right pixel
+    x, a map of the right image's pixels."""
+    got = np.asarray(got, np.float64)
+    if got.ndim != 2:
+        return
+    backwards = next(filter(None, map(_left_image_rolled_back, code_of(t).reachable(["block_matching"]))), "")
+    strip = got[:, :min(int(max_disparity), got.shape[1])]
+    with np.errstate(invalid="ignore"):
+        past = np.isfinite(strip) & (strip > 0) & (strip > np.arange(strip.shape[1])[None, :] + PAST_THE_EDGE)
+    if backwards and past.size and past.mean() > LEFT_STRIP_ALLOWED:
+        t.fail(f"{what}: {past.mean():.0%} of the left strip x < {max_disparity} gets a disparity larger than its "
+               "column x. " + from_code(f"Your code shifts the left image (`{backwards}`): it compares the left "
+                                        "image's pixel x + d with the right image's pixel x, a map of the right "
+                                        "image's pixels. The left pixel x matches the right pixel x - d: shift the "
+                                        "right image by +d instead, and compare it with the left image as it is."),
+               mistake=LEFT_IMAGE_SHIFTED)
+
+
 EDGE_ROW_LEFT_OUT = "the first or last row of the map never computed"
 
 
@@ -1869,38 +1913,65 @@ def fail_if_an_edge_row_left_out(t: Trial, what: str, got, true_disparity):
                    mistake=EDGE_ROW_LEFT_OUT)
 
 
-def judge_left_strip(t: Trial, what: str, got, max_disparity: int, function: str = "block_matching"):
-    """Fail when more than :data:`LEFT_STRIP_ALLOWED` of the left strip ``x < max_disparity`` of the
-    map ``got`` (H, W) get a disparity above their column ``x`` (+ :data:`PAST_THE_EDGE`): a match
-    left of the right image, which has no pixel there. Said of the map; np.roll only when the code
-    calls it."""
+def left_strip_tip(t: Trial, what: str, got, max_disparity: int, function: str = "block_matching"):
+    """A tip (advice checks) when more than :data:`LEFT_STRIP_ALLOWED` of the left strip ``x < max_disparity``
+    of the map ``got`` (H, W) get a disparity above their column ``x`` (+ :data:`PAST_THE_EDGE`): a match
+    left of the right image, which has no pixel there. Said of the map; np.roll only when the code calls it;
+    the left image shifted the wrong way, where the code does that."""
     got = np.asarray(got, np.float64)
+    if got.ndim != 2:
+        return
     strip = got[:, :min(int(max_disparity), got.shape[1])]
     with np.errstate(invalid="ignore"):
         past = np.isfinite(strip) & (strip > 0) & (strip > np.arange(strip.shape[1])[None, :] + PAST_THE_EDGE)
-    if past.mean() <= LEFT_STRIP_ALLOWED:
+    if not past.size or past.mean() <= LEFT_STRIP_ALLOWED:
         return
     y, x = (int(v[0]) for v in np.nonzero(past))
     read = code_of(t).reachable([function])
+    found = (f"{what}: {past.sum()} pixels of the left strip x < {max_disparity} ({past.mean():.0%} of it) get a "
+             f"disparity larger than their column x (e.g. d = {strip[y, x]:g} at x = {x}, row {y})")
+    # (block matching's band is left out of every bad-pixel rate, as its skeleton says; a DP's scenes may judge it)
+    unjudged = " The band where x - d leaves the right image is not judged: no points depend on this tip." \
+        if function == "block_matching" else \
+        " No points depend on this tip (a check that judges the band counts its wrong pixels like any others)."
     backwards = next(filter(None, map(_left_image_rolled_back, read)), "")
     if backwards:
-        t.fail(f"{what}: {past.sum()} pixels of the left strip x < {max_disparity} ({past.mean():.0%} of it) get a "
-               f"disparity larger than their column x (e.g. d = {strip[y, x]:g} at x = {x}, row {y}). "
-               + from_code(f"Your code shifts the left image (`{backwards}`): it compares the left image's pixel "
-                           "x + d with the right image's pixel x, a map of the right image's pixels. The left "
-                           "pixel x matches the right pixel x - d: shift the right image by +d instead, and "
-                           "compare it with the left image as it is."),
-               mistake=LEFT_IMAGE_SHIFTED)
+        t.advise(f"{found}. "
+                 + from_code(f"Your code shifts the left image (`{backwards}`): it compares the left image's pixel "
+                             "x + d with the right image's pixel x, a map of the right image's pixels. The left "
+                             "pixel x matches the right pixel x - d: shift the right image by +d instead, and "
+                             "compare it with the left image as it is.") + unjudged)
+        return
     rolled = WRAPPED_ROUND.found(read)
-    t.fail(f"{what}: {past.sum()} pixels of the left strip x < {max_disparity} ({past.mean():.0%} of it) get a "
-           f"disparity larger than their column x (e.g. d = {strip[y, x]:g} at x = {x}, row {y}): their match "
-           "x - d would lie left of the right image's first column, where it has no pixel. "
-           + measured("A left pixel x can only match d = 0..min(x, max_disparity); pixels with no match there are "
-                      "invalid (0).")
-           + (from_code(" Your code calls np.roll, which brings the right image's last columns round to its "
-                        "left edge: blocks there are compared with the far side of the image.") if rolled else ""),
-           mistake=PAST_THE_EDGE_MISTAKE,
-           hint=NO_PARTNER_HINT.said(t, [function]))
+    t.advise(f"{found}: their match x - d would lie left of the right image's first column, where it has no pixel. "
+             + measured("A left pixel x can only match d = 0..min(x, max_disparity); a pixel with no match there "
+                        "is best left invalid (0).")
+             + (from_code(" Your code calls np.roll, which brings the right image's last columns round to its "
+                          "left edge: blocks there are compared with the far side of the image.") if rolled else "")
+             + unjudged,
+             hint=NO_PARTNER_HINT.said(t, [function]))
+
+
+def fail_if_mostly_past_the_edge(t: Trial, what: str, got, truth_disparity, threshold: float, function: str):
+    """Fail naming matches left of the right image when at least half of a failing map's wrong pixels (where
+    the scene judges the left band: a DP's wrong matches there reach past it along the row) get a disparity
+    above their column x: pixels whose match x - d has no pixel in the right image."""
+    got = np.asarray(got, np.float64)
+    known = np.asarray(truth_disparity, np.float64)
+    if got.shape != known.shape or got.ndim != 2:
+        return
+    columns = np.arange(got.shape[1])[None, :]
+    with np.errstate(invalid="ignore"):
+        wrong = (known > 0) & ~(np.isfinite(got) & (got > 0) & (np.abs(got - known) <= threshold))
+        past = np.isfinite(got) & (got > columns + PAST_THE_EDGE)
+    if not wrong.any() or (wrong & past).sum() < 0.5 * wrong.sum():
+        return
+    y, x = (int(v[0]) for v in np.nonzero(wrong & past))
+    t.fail(measured(f"{what}: {(wrong & past).sum() / wrong.sum():.0%} of its wrong pixels get a disparity larger "
+                    f"than their column x (e.g. d = {got[y, x]:g} at x = {x}, row {y}): their match x - d would lie "
+                    "left of the right image's first column, where it has no pixel. A left pixel x can only match "
+                    "d = 0..min(x, max_disparity): impossible matches win along the left border."),
+           mistake=PAST_THE_EDGE_MISTAKE, hint=NO_PARTNER_HINT.said(t, [function]))
 
 
 # Told only to code that marks no column as without a partner (an infinite cost, a slice up to d, a test against d).
@@ -2199,8 +2270,7 @@ ext1 = lab.exercise("ext1", "Normalised cross-correlation", functions=[
             points=3, timeout=STEREO_TIMEOUT)
 def ncc_motorcycle(t):
     scene = truth.scene("motorcycle")
-    got = t.call("block_matching", np.array(scene.left), np.array(scene.right),
-                 max_disparity=scene.max_disparity, block_size=9, cost="ncc")
+    got = ncc_motorcycle_map(t)
     what = "block_matching(left, right, cost=\"ncc\")"
     verdict = judge_disparity(t, what, got, scene, figures("motorcycle", "bm_ncc_9")["bad"],
                               probe=block_size_probe(t, what, scene, cost="ncc"),
@@ -2209,11 +2279,6 @@ def ncc_motorcycle(t):
     if verdict.fraction < 1:
         verdict.hint = NCC_HINT.said(t)
         return verdict
-    try:   # the left border, where the map is not judged: a map right but there takes half the points
-        judge_left_strip(t, what, got, scene.max_disparity)
-    except Fail as past:
-        return partial(0.5, f"{past.message} On the rest of the motorcycle: {verdict.message}.", hint=past.hint,
-                       mistake=past.mistake)
     # The motorcycle has no pixel at either end of the range: d = 0 and d = max_disparity are
     # judged on the range-ends scene; a map right but for one end takes half the points.
     ends = truth.scene("zero_disparity")
@@ -2225,6 +2290,23 @@ def ncc_motorcycle(t):
         return partial(0.5, f"{missed.message} On the motorcycle: {verdict.message}.", hint=missed.hint,
                        mistake=missed.mistake)
     return verdict
+
+
+def ncc_motorcycle_map(t: Trial):
+    """block_matching(cost="ncc") on the motorcycle: one call, judged by its check and read by the left strip's tip."""
+    scene = truth.scene("motorcycle")
+    return t.shared(("block_matching", "motorcycle", "ncc"), lambda: t.call(
+        "block_matching", np.array(scene.left), np.array(scene.right), max_disparity=scene.max_disparity,
+        block_size=9, cost="ncc"))
+
+
+@ext1.advice("block_matching(cost=\"ncc\") gives no disparity past the left edge of the right image (x - d < 0)")
+def ncc_left_strip_advice(t):
+    scene = truth.scene("motorcycle")   # (told of a map the motorcycle's check gives its credit)
+    got = np.asarray(ncc_motorcycle_map(t))
+    if got.shape == np.asarray(scene.left).shape[:2] and got.dtype.kind in "fiu" and \
+            truth.bad_pixel_rate(got, scene.judged, scene.threshold) <= figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN:
+        left_strip_tip(t, "block_matching(left, right, cost=\"ncc\")", got, scene.max_disparity)
 
 
 COSTS_SWAPPED = "the two costs are swapped: cost=\"ncc\" runs the SSD matching and cost=\"ssd\" the NCC"
@@ -2723,7 +2805,7 @@ def judge_last_column(t: Trial, what: str, got, scene):
 def dp_weak_texture(t):
     scene = truth.scene("weak_texture")
     what = "dp_stereo(left, right)"
-    got = expect_disparity(t, what, call_dp(t, scene), scene)
+    got = expect_disparity(t, what, weak_texture_dp_map(t), scene)
     bad = truth.bad_pixel_rate(got, scene.judged, scene.threshold)
     show_disparity(t, f"{what} on {scene.name}", scene, got, bad)
     judge_last_column(t, what, got, scene)
@@ -2737,9 +2819,6 @@ def dp_weak_texture(t):
         try:
             judge_top_of_range(t, what, got, scene, truth.top_of_range(scene.judged, scene.max_disparity),
                                reference["top_found"], "the reference", show=False)
-            # (a left pixel x matches d <= x only, as in block matching: an impossible match given the
-            # best cost -- the columns x < d of the cost volume filled with 0 -- takes the left strip)
-            judge_left_strip(t, what, got, scene.max_disparity, function="dp_stereo")
         except Fail as missed:
             return partial(0.5, f"{missed.message} {summary}.", hint=missed.hint, mistake=missed.mistake)
         return passed(summary)
@@ -2761,6 +2840,24 @@ def dp_weak_texture(t):
     name_no_backtracking(t, what)
     naming_crop(t, "dp_stereo", scene, columns=NAMING_COLUMNS)()
     t.fail(f"{what}: {summary}: no better than block matching.")
+
+
+def weak_texture_dp_map(t: Trial):
+    """dp_stereo on the weak-texture scene with its defaults: one call, judged by its check and read by the left
+    strip's tip."""
+    scene = truth.scene("weak_texture")
+    return t.shared(("dp_stereo", "weak_texture"), lambda: call_dp(t, scene))
+
+
+@ex5.advice("dp_stereo gives no disparity past the left edge of the right image (x - d < 0)")
+def dp_left_strip_advice(t):
+    # (a left pixel x matches d <= x only, as in block matching: an impossible match given the best cost -- the
+    # columns x < d of the cost volume filled with 0 -- takes the left strip; told of a map right elsewhere)
+    scene = truth.scene("weak_texture")
+    got = np.asarray(weak_texture_dp_map(t))
+    if got.shape == np.asarray(scene.left).shape[:2] and got.dtype.kind in "fiu" and \
+            truth.bad_pixel_rate(got, scene.judged, scene.threshold) <= figures("weak_texture", "dp_5")["bad"] + MARGIN:
+        left_strip_tip(t, "dp_stereo(left, right)", got, scene.max_disparity, function="dp_stereo")
 
 
 @ex5.check("dp_stereo is smooth: far fewer disparity jumps along scanlines than block matching",
@@ -2823,6 +2920,7 @@ def dp_depth_edge(t):
     if bad <= reference + MARGIN:
         return passed(summary)
     show_disparity(t, what, scene, got, bad)
+    fail_if_mostly_past_the_edge(t, what, got, scene.judged, scene.threshold, DP_FUNCTION)
     name_oversmoothing(t, what, got, scene, reference + MARGIN)
 
     def rate(smoothness):   # the student's own map at another penalty, None where it cannot be told

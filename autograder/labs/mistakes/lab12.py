@@ -232,15 +232,6 @@ MISTAKES = {
         "cx = (width - 1) / 2.0\nu = np.broadcast_to(np.arange(width, dtype=np.float64) - cx, depth.shape)"),
         # (the reference's line has no centring: the centring is told as the line's departure from it)
         ["`np.arange(width, dtype=np.float64) - cx` to `np.arange(width, dtype=np.float64)`"]),
-    "block matching's costs without a partner marked NaN": ("lab12.ex4", """
-        def _ssd_volume(left, right, max_disparity, block_size):
-            height, width = left.shape
-            costs = np.full((max_disparity + 1, height, width), np.nan)
-            for d in range(min(max_disparity, width - 1) + 1):
-                costs[d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size)
-                costs[d, :, :d] = np.nan
-            return costs
-        """, ["left of the right image's first column"]),   # (the change is told beside it: tests/test_repair.py)
     "depth_from_disparity filling the holes from the left": ("lab12.ex2", """
         def depth_from_disparity(disparity, f, baseline):
             d = np.array(disparity, dtype=np.float64)
@@ -740,25 +731,6 @@ MISTAKES = {
                     costs[d, :, -d:] = np.inf
             return costs
         """, ["wrong direction"]),
-    # Columns x < d have no partner in the right image: a search that compares them anyway (the right
-    # image's edge repeated, zeros padded, or wrapped round) sends pixels of the left strip past it.
-    "block matching with the x < d cost left finite (the right image's first column repeated)": ("lab12.ex4", """
-        def _ssd_volume(left, right, max_disparity, block_size):
-            height, width = left.shape
-            costs = np.full((max_disparity + 1, height, width), np.inf)
-            for d in range(min(max_disparity, width - 1) + 1):
-                costs[d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size)
-            return costs
-        """, ["of the left strip", "larger than their column x", "left of the right image's first column"]),
-    "block matching against a zero-padded right image (np.pad), every d at every column": ("lab12.ex4", """
-        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
-            left, right = _grey_float(left), _grey_float(right)
-            width = left.shape[1]
-            padded = np.pad(right, ((0, 0), (max_disparity, 0)))
-            costs = [cv2.boxFilter((left - padded[:, max_disparity - d:max_disparity - d + width]) ** 2, -1,
-                                   (block_size, block_size), normalize=False) for d in range(max_disparity + 1)]
-            return np.argmin(np.stack(costs), axis=0).astype(np.float64)
-        """, ["larger than their column x"]),
     "block matching with negative disparities": ("lab12.ex4", """
         _block_matching = block_matching
         def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
@@ -846,20 +818,6 @@ MISTAKES = {
                 costs[d, :, :d] = np.inf
             return costs
         """, ["not fully normalised"]),
-    "NCC against the right image rolled (np.roll), the wrapped columns not excluded": ("lab12.ext1", """
-        def _ncc_volume(left, right, max_disparity, block_size):
-            mean_l = _box_mean(left, block_size)
-            std_l = np.sqrt(np.maximum(_box_mean(left * left, block_size) - mean_l ** 2, 0.0))
-            costs = []
-            for d in range(max_disparity + 1):
-                shifted = np.roll(right, d, axis=1)
-                mean_r = _box_mean(shifted, block_size)
-                std_r = np.sqrt(np.maximum(_box_mean(shifted * shifted, block_size) - mean_r ** 2, 0.0))
-                below = std_l * std_r
-                costs.append(-np.divide(_box_mean(left * shifted, block_size) - mean_l * mean_r, below,
-                                        out=np.zeros_like(below), where=below > 1e-6))
-            return np.stack(costs)
-        """, ["larger than their column x", "your code calls np.roll"]),
     "NCC as a plain correlation": ("lab12.ext1", """
         def _ncc_volume(left, right, max_disparity, block_size):
             height, width = left.shape
@@ -937,7 +895,7 @@ MISTAKES = {
                 disp[better], best[better] = d, ssd[better]
             return disp
         """, ["your code shifts the left image", "a map of the right image's pixels"]),
-    # ---------------------------------------------------------------- ex5
+    # (the left band is judged where a DP's scene judges it: the deep step's failure is its impossible matches)
     "DP whose cost volume gives impossible matches (x < d) cost 0": ("lab12.ex5", """
         def _sad_volume(left, right, max_disparity, block_size):
             height, width = left.shape
@@ -1411,4 +1369,57 @@ ADVICE = {
             [int(np.floor(z)) for z in depth.ravel() if not z <= 0]   # (NaN is not <= 0)
             return _simulate_finite(depth, f, baseline, n_bits)
         """, ["rows 20-29 NaN raised", "np.isfinite"]),
+    # (the left band, where x - d leaves the right image: the API leaves it open -- a tip, no point lost)
+    # (the blind legitimate set 1206m's DP: the right image's first column repeated where x - d < 0)
+    "DP with the x < d cost left finite (the right image's first column repeated)": ("lab12.ex5", """
+        def _sad_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.zeros((max_disparity + 1, height, width), dtype=np.float32)
+            for d in range(min(max_disparity, width - 1) + 1):
+                costs[d] = _box_mean(np.abs(left - _shift_right(right, d)), block_size)
+            return np.ascontiguousarray(costs.transpose(2, 1, 0))
+        """, ["of the left strip", "larger than their column x", "no points depend on this tip"]),
+    # Columns x < d have no partner in the right image: a search that compares them anyway (the right
+    # image's edge repeated, zeros padded, or wrapped round) sends pixels of the left strip past it.
+    "block matching with the x < d cost left finite (the right image's first column repeated)": ("lab12.ex4", """
+        def _ssd_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.inf)
+            for d in range(min(max_disparity, width - 1) + 1):
+                costs[d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size)
+            return costs
+        """, ["of the left strip", "larger than their column x", "left of the right image's first column"]),
+    "block matching against a zero-padded right image (np.pad), every d at every column": ("lab12.ex4", """
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            left, right = _grey_float(left), _grey_float(right)
+            width = left.shape[1]
+            padded = np.pad(right, ((0, 0), (max_disparity, 0)))
+            costs = [cv2.boxFilter((left - padded[:, max_disparity - d:max_disparity - d + width]) ** 2, -1,
+                                   (block_size, block_size), normalize=False) for d in range(max_disparity + 1)]
+            return np.argmin(np.stack(costs), axis=0).astype(np.float64)
+        """, ["larger than their column x"]),
+    "NCC against the right image rolled (np.roll), the wrapped columns not excluded": ("lab12.ext1", """
+        def _ncc_volume(left, right, max_disparity, block_size):
+            mean_l = _box_mean(left, block_size)
+            std_l = np.sqrt(np.maximum(_box_mean(left * left, block_size) - mean_l ** 2, 0.0))
+            costs = []
+            for d in range(max_disparity + 1):
+                shifted = np.roll(right, d, axis=1)
+                mean_r = _box_mean(shifted, block_size)
+                std_r = np.sqrt(np.maximum(_box_mean(shifted * shifted, block_size) - mean_r ** 2, 0.0))
+                below = std_l * std_r
+                costs.append(-np.divide(_box_mean(left * shifted, block_size) - mean_l * mean_r, below,
+                                        out=np.zeros_like(below), where=below > 1e-6))
+            return np.stack(costs)
+        """, ["larger than their column x", "your code calls np.roll"]),
+    # ---------------------------------------------------------------- ex5
+    "block matching's costs without a partner marked NaN": ("lab12.ex4", """
+        def _ssd_volume(left, right, max_disparity, block_size):
+            height, width = left.shape
+            costs = np.full((max_disparity + 1, height, width), np.nan)
+            for d in range(min(max_disparity, width - 1) + 1):
+                costs[d] = _box_mean((left - _shift_right(right, d)) ** 2, block_size)
+                costs[d, :, :d] = np.nan
+            return costs
+        """, ["left of the right image's first column"]),
 }
