@@ -1805,6 +1805,15 @@ def left_strip_advice(t):
 PAST_THE_EDGE = 0.5     # px beyond x: still the right image's first pixel
 LEFT_STRIP_ALLOWED = 0.01   # share of the strip's pixels (legitimate matchers: none)
 PAST_THE_EDGE_MISTAKE = "disparities point left of the right image (x - d < 0) along the left border"
+
+
+def past_the_edge(disparity) -> np.ndarray:
+    """The pixels of a disparity map (H, W) -- or of its left columns -- whose disparity is above their column
+    x (+ :data:`PAST_THE_EDGE`): a match x - d left of the right image's first column."""
+    disparity = np.asarray(disparity, np.float64)
+    with np.errstate(invalid="ignore"):
+        return np.isfinite(disparity) & (disparity > 0) & \
+            (disparity > np.arange(disparity.shape[1])[None, :] + PAST_THE_EDGE)
 ROLLED = calls("np.roll")
 
 
@@ -1876,9 +1885,7 @@ def name_left_image_shifted(t: Trial, what: str, got, max_disparity: int):
     if got.ndim != 2:
         return
     backwards = next(filter(None, map(_left_image_rolled_back, code_of(t).reachable(["block_matching"]))), "")
-    strip = got[:, :min(int(max_disparity), got.shape[1])]
-    with np.errstate(invalid="ignore"):
-        past = np.isfinite(strip) & (strip > 0) & (strip > np.arange(strip.shape[1])[None, :] + PAST_THE_EDGE)
+    past = past_the_edge(got[:, :min(int(max_disparity), got.shape[1])])
     if backwards and past.size and past.mean() > LEFT_STRIP_ALLOWED:
         t.fail(f"{what}: {past.mean():.0%} of the left strip x < {max_disparity} gets a disparity larger than its "
                "column x. " + from_code(f"Your code shifts the left image (`{backwards}`): it compares the left "
@@ -1922,8 +1929,7 @@ def left_strip_tip(t: Trial, what: str, got, max_disparity: int, function: str =
     if got.ndim != 2:
         return
     strip = got[:, :min(int(max_disparity), got.shape[1])]
-    with np.errstate(invalid="ignore"):
-        past = np.isfinite(strip) & (strip > 0) & (strip > np.arange(strip.shape[1])[None, :] + PAST_THE_EDGE)
+    past = past_the_edge(strip)
     if not past.size or past.mean() <= LEFT_STRIP_ALLOWED:
         return
     y, x = (int(v[0]) for v in np.nonzero(past))
@@ -1960,10 +1966,9 @@ def fail_if_mostly_past_the_edge(t: Trial, what: str, got, truth_disparity, thre
     known = np.asarray(truth_disparity, np.float64)
     if got.shape != known.shape or got.ndim != 2:
         return
-    columns = np.arange(got.shape[1])[None, :]
     with np.errstate(invalid="ignore"):
         wrong = (known > 0) & ~(np.isfinite(got) & (got > 0) & (np.abs(got - known) <= threshold))
-        past = np.isfinite(got) & (got > columns + PAST_THE_EDGE)
+    past = past_the_edge(got)
     if not wrong.any() or (wrong & past).sum() < 0.5 * wrong.sum():
         return
     y, x = (int(v[0]) for v in np.nonzero(wrong & past))
