@@ -188,3 +188,16 @@ def test_circles_drawn_at_y_x_are_told_so_by_the_check_of_points_just_off_the_im
              if c.name.startswith("draw_points draws the part in view of a circle centred just off the image")]
     assert off.lost_points and off.mistake == XY_SWAPPED and "drawn at (y, x)" in off.message, off.message
     assert "is not drawn" not in off.message
+
+
+def test_a_camera_matrix_at_another_scale_and_sign_keeps_full_marks():
+    """P is a projective quantity: the API accepts any non-zero scale of it, sign included (the blind legitimate
+    set 1206m's v3 returned K [R | t] scaled to unit norm and negated, and lost 3 points)."""
+    result = graded_case(MODULE, "lab09.ex3", """
+        _camera_matrix = camera_matrix
+        def camera_matrix(K, R, t):
+            P = _camera_matrix(K, R, t)
+            return -P / np.linalg.norm(P)
+        """)
+    [exercise] = [e for e in result.exercises if e.id == "lab09.ex3"]
+    assert exercise.score == exercise.max_score, [c.message for c in exercise.checks if c.score < c.max_score]

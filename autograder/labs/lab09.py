@@ -663,15 +663,17 @@ def _example_camera(seed=31):
     return K, R, tvec
 
 
+# P is a projective quantity: the API's conventions accept any non-zero scale of it, sign included (the blind
+# legitimate set 1206m's K [R | t] scaled to unit norm and negated lost 3 points), here as wherever P is judged.
 @ex3.check("camera_matrix(K, R, t) = K [R | t], for a camera at the world origin too (t = 0)", points=2)
 def camera_matrix_example(t):
     K, R, tvec = _example_camera()
     judge_matrix(t, "camera_matrix(K, R, t)", t.call("camera_matrix", K, R, tvec),
-                 truth.camera(K, R, tvec), truth.camera_mistakes(K, R, tvec), shape=(3, 4))
+                 truth.camera(K, R, tvec), truth.camera_mistakes(K, R, tvec), shape=(3, 4), up_to_scale=True)
     # (t = 0: the camera at the world origin, P = K [R | 0] -- still 3 x 4, its last column 0)
     zero = np.zeros(3)
     judge_matrix(t, "camera_matrix(K, R, t=np.zeros(3))", t.call("camera_matrix", K, R, zero),
-                 truth.camera(K, R, zero), truth.camera_mistakes(K, R, zero), shape=(3, 4))
+                 truth.camera(K, R, zero), truth.camera_mistakes(K, R, zero), shape=(3, 4), up_to_scale=True)
 
 
 @ex3.check("camera_matrix for random cameras", points=1)
@@ -679,7 +681,7 @@ def camera_matrix_property(t):
     def holds(seed):
         K, R, tvec = _example_camera(seed)
         judge_matrix(t, "camera_matrix(K, R, t)", t.call("camera_matrix", K, R, tvec),
-                     truth.camera(K, R, tvec), truth.camera_mistakes(K, R, tvec), shape=(3, 4))
+                     truth.camera(K, R, tvec), truth.camera_mistakes(K, R, tvec), shape=(3, 4), up_to_scale=True)
 
     t.for_all(seeds, holds, max_examples=8, describe=lambda s: f"fixtures.lab09.random_pose({s})")
 

@@ -36,7 +36,7 @@ def hidden_project(t):
         R, tvec = truth.random_pose(seed(t.rng), max_angle_deg=60.0, distance=9.0)
         P = truth.camera(K, R, tvec)
         judge_matrix(t, "camera_matrix(K, R, t)", t.call("camera_matrix", K, R, tvec), P,
-                     uncached(truth.camera_mistakes)(K, R, tvec), shape=(3, 4))
+                     uncached(truth.camera_mistakes)(K, R, tvec), shape=(3, 4), up_to_scale=True)   # (P: any scale)
         X = truth.world_points_for(K, R, tvec, seed=seed(t.rng), n=25, width=640, height=480)
         judge_points(t, "project(P, points)", t.call("project", P, X), truth.homogeneous_project(P, X),
                      project_mistakes(P, X), probe=points_probe(t, "project"))

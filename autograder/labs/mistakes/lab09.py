@@ -800,7 +800,7 @@ MISTAKES = {
         def camera_matrix(K, R, t):
             P = _right(K, R, t)
             return P / P[2, 3]
-        """, ["right only up to scale"]),
+        """, ["returned NaN or infinite values", "changing `return P / P[2, 3]` to `return P`"]),   # (any scale is P: t = 0 divides by 0)
     "tangential terms with the wrong sign": ("lab09.ext2", """
         _right = distort_points
         def distort_points(points, dist):
