@@ -1814,6 +1814,8 @@ def past_the_edge(disparity) -> np.ndarray:
     with np.errstate(invalid="ignore"):
         return np.isfinite(disparity) & (disparity > 0) & \
             (disparity > np.arange(disparity.shape[1])[None, :] + PAST_THE_EDGE)
+
+
 ROLLED = calls("np.roll")
 
 
@@ -1959,9 +1961,9 @@ def left_strip_tip(t: Trial, what: str, got, max_disparity: int, function: str =
 
 
 def fail_if_mostly_past_the_edge(t: Trial, what: str, got, truth_disparity, threshold: float, function: str):
-    """Fail naming matches left of the right image when at least half of a failing map's wrong pixels (where
-    the scene judges the left band: a DP's wrong matches there reach past it along the row) get a disparity
-    above their column x: pixels whose match x - d has no pixel in the right image."""
+    """Fail naming matches left of the right image when at least half of a failing map's wrong pixels (on a scene
+    that judges the left band, as the deep step does) get a disparity above their column x: pixels whose match
+    x - d has no pixel in the right image."""
     got = np.asarray(got, np.float64)
     known = np.asarray(truth_disparity, np.float64)
     if got.shape != known.shape or got.ndim != 2:
