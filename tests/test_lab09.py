@@ -192,7 +192,7 @@ def test_circles_drawn_at_y_x_are_told_so_by_the_check_of_points_just_off_the_im
 
 def test_a_camera_matrix_at_another_scale_and_sign_keeps_full_marks():
     """P is a projective quantity: the API accepts any non-zero scale of it, sign included (the blind legitimate
-    set 1206m's v3 returned K [R | t] scaled to unit norm and negated, and lost 3 points)."""
+    set 1206n's v3 returned K [R | t] scaled to unit norm and negated, and lost 3 points)."""
     result = graded_case(MODULE, "lab09.ex3", """
         _camera_matrix = camera_matrix
         def camera_matrix(K, R, t):

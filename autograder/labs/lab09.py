@@ -664,7 +664,7 @@ def _example_camera(seed=31):
 
 
 # P is a projective quantity: the API's conventions accept any non-zero scale of it, sign included (the blind
-# legitimate set 1206m's K [R | t] scaled to unit norm and negated lost 3 points), here as wherever P is judged.
+# legitimate set 1206n's K [R | t] scaled to unit norm and negated lost 3 points), here as wherever P is judged.
 @ex3.check("camera_matrix(K, R, t) = K [R | t], for a camera at the world origin too (t = 0)", points=2)
 def camera_matrix_example(t):
     K, R, tvec = _example_camera()
