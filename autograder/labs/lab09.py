@@ -478,8 +478,9 @@ def advise_nan_behind(t: Trial, what: str, got, behind, in_front=None):
 
 
 def judge_matrix(t: Trial, what: str, got, expected, mistakes=None, shape=(3, 3), up_to_scale=False):
-    """The shared matrix judge, with this lab's tighter tolerance; a matrix right only up
-    to a factor is named as such (K and P here are defined exactly, not up to scale)."""
+    """The shared matrix judge, with this lab's tighter tolerance; where the matrix is defined exactly
+    (K, whose K[2, 2] is 1), one right only up to a factor is named as such. P is the API's projective
+    quantity: its checks pass ``up_to_scale`` (any non-zero scale, sign included)."""
     scale = magnitude(expected)
     if not up_to_scale and isinstance(got, np.ndarray) and got.shape == tuple(shape) and got.dtype.kind in "iuf" \
             and np.isfinite(got).all() and np.abs(got - expected).max() > at_precision(1e-7 * scale, scale):
@@ -1720,18 +1721,19 @@ def draw_partly_in_view(t):
     points inside the frame loses it)."""
     image = photo("coffee", (160, 120))
     pts = np.array([[40.0, 40.0], [-3.0, 70.0], [90.0, -2.0]])
-    what = "draw_points(image, pts, radius=8) with points at (-3, 70) and (90, -2), just off the image"
-    got = t.call("draw_points", image, pts, radius=8)
+    radius = 8
+    what = f"draw_points(image, pts, radius={radius}) with points at (-3, 70) and (90, -2), just off the image"
+    got = t.call("draw_points", image, pts, radius=radius)
     got = t.expect_array(got, what, shape=image.shape, dtype=np.uint8)
     painted = np.all(got == np.array([0, 0, 255], np.uint8), axis=-1) if got.ndim == 3 else got == 255
     shares = [painted[core].mean() if core.any() else 1.0
-              for core in (truth.circle_regions(image.shape, pts[i:i + 1], 8)[0] for i in range(len(pts)))]
+              for core in (truth.circle_regions(image.shape, pts[i:i + 1], radius)[0] for i in range(len(pts)))]
     if shares[0] >= 0.97 and min(shares[1:]) < 0.97:   # (the point in view drawn: this check's question only)
         missing = [f"({x:g}, {y:g})" for (x, y), share in zip(pts[1:], shares[1:]) if share < 0.97]
         t.images(what, "the circles of points just off the image reach into it", input=image, yours=got)
         # (the point in view sits on the diagonal: circles drawn at (y, x) miss only the others -- 06l 09/04 was
         # told their parts in view are not drawn, as if left out)
-        at_yx = [truth.circle_regions(image.shape, pts[i:i + 1, ::-1], 8)[0] for i in (1, 2)]
+        at_yx = [truth.circle_regions(image.shape, pts[i:i + 1, ::-1], radius)[0] for i in (1, 2)]
         if all(core.any() and painted[core].mean() > 0.9 for core in at_yx):
             t.fail(f"{what}: {DRAWN_AT_YX}", mistake=XY_SWAPPED)
         bound = _bounds_test(code_of(t).reachable(["draw_points"]))

@@ -1782,15 +1782,23 @@ def random_dots_map(t: Trial):
 
 @ex4.advice("block_matching gives no disparity past the left edge of the right image (x - d < 0)")
 def left_strip_advice(t):
-    # (told of a map right elsewhere, within what the quality check gives credit for: a map wrong all over --
-    # a search in the wrong direction -- is told why by the graded checks)
     scene = truth.scene("random_dots")
-    got = np.asarray(random_dots_map(t))
-    if got.shape != np.asarray(scene.left).shape[:2] or got.dtype.kind not in "fiu":
+    strip_tip_where_right_elsewhere(t, f"block_matching(left, right, max_disparity={FORM_DISPARITY})",
+                                    random_dots_map(t), scene, truth.band(scene.judged, FORM_DISPARITY, 9),
+                                    bm_figures("random_dots")["legitimate"] + SLACK + FADE, FORM_DISPARITY)
+
+
+def strip_tip_where_right_elsewhere(t: Trial, what: str, got, scene, judged, allowed: float, max_disparity: int,
+                                    function: str = "block_matching"):
+    """:func:`left_strip_tip` for a map of ``scene`` whose bad-pixel rate on ``judged`` is within ``allowed`` (the
+    credit its graded check gives): a map wrong all over is told why by the graded checks."""
+    try:
+        got = np.asarray(got)
+    except (ValueError, TypeError):   # (a ragged answer: its graded check says what is wrong with it)
         return
-    rest = truth.bad_pixel_rate(got, truth.band(scene.judged, FORM_DISPARITY, 9), scene.threshold)
-    if rest <= bm_figures("random_dots")["legitimate"] + SLACK + FADE:
-        left_strip_tip(t, f"block_matching(left, right, max_disparity={FORM_DISPARITY})", got, FORM_DISPARITY)
+    if got.shape == np.asarray(scene.left).shape[:2] and got.dtype.kind in "fiu" \
+            and truth.bad_pixel_rate(got, judged, scene.threshold) <= allowed:
+        left_strip_tip(t, what, got, max_disparity, function)
 
 
 # A left pixel x has its match at x - d in the right image, whose first column is 0: d <= x (+ half a
@@ -1876,6 +1884,14 @@ def _left_image_rolled_back(function) -> str:
     return ""
 
 
+def _shifted_left_words(backwards: str) -> str:
+    """What the code does where it shifts the left image back (``backwards``: the call, as written)."""
+    return from_code(f"Your code shifts the left image (`{backwards}`): it compares the left image's pixel x + d with "
+                     "the right image's pixel x, a map of the right image's pixels. The left pixel x matches the "
+                     "right pixel x - d: shift the right image by +d instead, and compare it with the left image as "
+                     "it is.")
+
+
 LEFT_IMAGE_SHIFTED = "the left image shifted where the right one belongs (a map of the right image's pixels)"
 
 
@@ -1890,11 +1906,7 @@ def name_left_image_shifted(t: Trial, what: str, got, max_disparity: int):
     past = past_the_edge(got[:, :min(int(max_disparity), got.shape[1])])
     if backwards and past.size and past.mean() > LEFT_STRIP_ALLOWED:
         t.fail(f"{what}: {past.mean():.0%} of the left strip x < {max_disparity} gets a disparity larger than its "
-               "column x. " + from_code(f"Your code shifts the left image (`{backwards}`): it compares the left "
-                                        "image's pixel x + d with the right image's pixel x, a map of the right "
-                                        "image's pixels. The left pixel x matches the right pixel x - d: shift the "
-                                        "right image by +d instead, and compare it with the left image as it is."),
-               mistake=LEFT_IMAGE_SHIFTED)
+               "column x. " + _shifted_left_words(backwards), mistake=LEFT_IMAGE_SHIFTED)
 
 
 EDGE_ROW_LEFT_OUT = "the first or last row of the map never computed"
@@ -1944,11 +1956,7 @@ def left_strip_tip(t: Trial, what: str, got, max_disparity: int, function: str =
         " No points depend on this tip (a check that judges the band counts its wrong pixels like any others)."
     backwards = next(filter(None, map(_left_image_rolled_back, read)), "")
     if backwards:
-        t.advise(f"{found}. "
-                 + from_code(f"Your code shifts the left image (`{backwards}`): it compares the left image's pixel "
-                             "x + d with the right image's pixel x, a map of the right image's pixels. The left "
-                             "pixel x matches the right pixel x - d: shift the right image by +d instead, and "
-                             "compare it with the left image as it is.") + unjudged)
+        t.advise(f"{found}. " + _shifted_left_words(backwards) + unjudged)
         return
     rolled = WRAPPED_ROUND.found(read)
     t.advise(f"{found}: their match x - d would lie left of the right image's first column, where it has no pixel. "
@@ -2309,11 +2317,9 @@ def ncc_motorcycle_map(t: Trial):
 
 @ext1.advice("block_matching(cost=\"ncc\") gives no disparity past the left edge of the right image (x - d < 0)")
 def ncc_left_strip_advice(t):
-    scene = truth.scene("motorcycle")   # (told of a map the motorcycle's check gives its credit)
-    got = np.asarray(ncc_motorcycle_map(t))
-    if got.shape == np.asarray(scene.left).shape[:2] and got.dtype.kind in "fiu" and \
-            truth.bad_pixel_rate(got, scene.judged, scene.threshold) <= figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN:
-        left_strip_tip(t, "block_matching(left, right, cost=\"ncc\")", got, scene.max_disparity)
+    scene = truth.scene("motorcycle")
+    strip_tip_where_right_elsewhere(t, "block_matching(left, right, cost=\"ncc\")", ncc_motorcycle_map(t), scene,
+                                    scene.judged, figures("motorcycle", "bm_ncc_9")["bad"] + MARGIN, scene.max_disparity)
 
 
 COSTS_SWAPPED = "the two costs are swapped: cost=\"ncc\" runs the SSD matching and cost=\"ssd\" the NCC"
@@ -2861,10 +2867,8 @@ def dp_left_strip_advice(t):
     # (a left pixel x matches d <= x only, as in block matching: an impossible match given the best cost -- the
     # columns x < d of the cost volume filled with 0 -- takes the left strip; told of a map right elsewhere)
     scene = truth.scene("weak_texture")
-    got = np.asarray(weak_texture_dp_map(t))
-    if got.shape == np.asarray(scene.left).shape[:2] and got.dtype.kind in "fiu" and \
-            truth.bad_pixel_rate(got, scene.judged, scene.threshold) <= figures("weak_texture", "dp_5")["bad"] + MARGIN:
-        left_strip_tip(t, "dp_stereo(left, right)", got, scene.max_disparity, function="dp_stereo")
+    strip_tip_where_right_elsewhere(t, "dp_stereo(left, right)", weak_texture_dp_map(t), scene, scene.judged,
+                                    figures("weak_texture", "dp_5")["bad"] + MARGIN, scene.max_disparity, DP_FUNCTION)
 
 
 @ex5.check("dp_stereo is smooth: far fewer disparity jumps along scanlines than block matching",
