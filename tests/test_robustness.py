@@ -86,6 +86,25 @@ def test_exit_at_import_costs_the_module_with_a_clear_message(tmp_path, source, 
         assert message in exercise.message
 
 
+def test_a_file_importing_another_labs_module_handed_in_alone_is_told_to_hand_in_both(tmp_path):
+    """A lab 8 file reusing lab 7's functions imports lab07_transformations: beside it, it grades; alone,
+    the import error says which lab's file is missing and what to do; a module nobody hands in is left
+    as Python says it."""
+    reused = (REFERENCE / "lab08_homographies.py").read_text()
+    (tmp_path / "lab08_homographies.py").write_text("from lab07_transformations import rotation_matrix\n" + reused)
+    alone = grade(tmp_path, ["lab08.ex1"], limits=FAST)
+    message = alone.exercises[0].message
+    assert alone.exercises[0].score == 0 and "No module named 'lab07_transformations'" in message
+    assert "lab07_transformations.py is the file of lab07, which lab08_homographies.py imports: hand it in " \
+           "beside lab08_homographies.py" in message
+    (tmp_path / "lab07_transformations.py").write_text((REFERENCE / "lab07_transformations.py").read_text())
+    both = grade(tmp_path, ["lab08.ex1"], limits=FAST)
+    assert both.exercises[0].score == both.exercises[0].max_score > 0
+    (tmp_path / "lab08_homographies.py").write_text("import lab99_nowhere\n" + reused)
+    unknown = grade(tmp_path, ["lab08.ex1"], limits=FAST).exercises[0].message
+    assert "No module named 'lab99_nowhere'" in unknown and "hand it in" not in unknown
+
+
 def test_infinite_loop_at_import(tmp_path):
     result = grade(submission_from_source(tmp_path, MODULE, """
         while True:

@@ -25,6 +25,7 @@ import contextlib
 import copy
 import logging
 import os
+import re
 import threading
 import time
 import traceback
@@ -845,7 +846,22 @@ def _import(sandbox: Sandbox, module: str, submission) -> CallOutcome:
         where = _innermost_frame(outcome.traceback)
         if where:
             outcome = replace(outcome, message=f"{outcome.message}\n  at {where}")
+    if not outcome.ok and outcome.kind == "import_error":
+        outcome = replace(outcome, message=outcome.message + _another_labs_module(outcome.message, module))
     return outcome
+
+
+def _another_labs_module(message: str, module: str) -> str:
+    """Why an import of another lab's module failed, when it did (a lab 12 file reusing lab 11's
+    functions, graded without lab 11's file beside it): the module it needs and what to do; else ""."""
+    missing = re.search(r"No module named '([A-Za-z_][A-Za-z0-9_]*)'", message)
+    if missing is None or missing.group(1) == module:
+        return ""
+    lab = next((lab for lab in discover().values() if lab.module == missing.group(1)), None)
+    if lab is None:
+        return ""
+    return (f"\n  {lab.module}.py is the file of {lab.key}, which {module}.py imports: hand it in beside "
+            f"{module}.py (the grader imports it from the same folder), or copy what {module}.py uses from it")
 
 
 def _innermost_frame(traceback_text: str) -> str:
