@@ -370,15 +370,21 @@ def test_where_a_matrix_is_wrong_counts_each_row_at_its_own_size():
     assert where_matrices_differ(noisy, K @ Rt) == "in entry [0, 0] only"
 
 
-def test_single_entries_are_named_only_where_every_other_entry_is_right():
+def test_a_place_is_named_only_where_every_entry_outside_it_is_right():
     """A homography from a DLT taking a column of Vt: its translation entries carry most of the error, and its
     small entries are wrong too, by less than a tenth of it -- not "wrong in entries [0, 2], [1, 1], [2, 0]"
-    (06l 08/02), every entry printed apart."""
+    (06l 08/02) nor "wrong in its second and third columns" (06o 08/02), every entry printed apart."""
     from autograder.engine.judges import where_matrices_differ
 
     got = [[-0.1149, 0.0041, -0.0261], [0.4562, -10.0535, -42.4938], [-35.7291, -0.8632, 1.0]]
     expected = [[0.6678, -0.0313, 35.0622], [-0.0595, 0.8957, -44.201], [-0.0002, -0.0006, 1.0]]
-    assert where_matrices_differ(got, expected, up_to_scale=True) == "in every entry"
+    assert where_matrices_differ(got, expected, up_to_scale=True) == "in every row and every column"
+    got = [[0.6835, -1.1626, 369.7213], [-0.0142, 0.2405, 158.7888], [-0.0001, -0.0002, 1.0]]
+    expected = [[0.6483, -0.1408, 53.9746], [-0.0877, 0.7759, 15.242], [-0.0005, -0.0002, 1.0]]
+    assert where_matrices_differ(got, expected, up_to_scale=True) == "in every row and every column"
+    two = np.eye(3)
+    two[:, 2] = [5.0, -3.0, 1.0]   # (the third column alone wrong, the rest exact)
+    assert where_matrices_differ(two, np.eye(3)) == "in its third column"
     one = np.eye(3)
     one[0, 2] = 5.0
     assert where_matrices_differ(one, np.eye(3)) == "in entry [0, 2] only"
