@@ -194,6 +194,18 @@ def test_mistake_labels():
     assert mistake_of({"status": FAILED, "message": "F(x) is wrong: it looks like F transposed.\nmore"}) == (
         "F transposed", True)
     assert mistake_of({"status": FAILED, "message": "f() did not finish within 10 s"}) is None
+    # (the error model's names and its repairs: the sentence the student read, or the function mended and how)
+    named = ("camera_matrix_dlt(P) is wrong. The error model: it looks like in `camera_matrix_dlt`, a minus sign is "
+             "missing in the third item of the first argument of the second `np.hstack` (sign). It returned ...")
+    assert mistake_of({"status": FAILED, "message": named, "mistake": "mutant:sign"}) == (
+        "in `camera_matrix_dlt`, a minus sign is missing in the third item of the first argument of the second "
+        "`np.hstack`", True)
+    repaired = ("rotate(image) is wrong. Trying small changes to your code: changing `np.radians(a)` to `a` (line 55) "
+                "makes `rotate` give the expected answers on all 15 inputs tried")
+    assert mistake_of({"status": FAILED, "message": repaired, "mistake": "repair:swap_items"}) == (
+        "one change of `rotate` mends it (swap items)", True)
+    assert mistake_of({"status": FAILED, "message": "m", "mistake": "mutant:add_sub+other_name"}) == (
+        "the error model's add sub and other name", True)
     assert first_sentence("error 3.5 px where the best has 0.25 px. Look again") == "error # px where the best has # px"
 
 

@@ -217,7 +217,7 @@ def mistake_of(check: dict) -> tuple[str, bool] | None:
     if check.get("status") in (PASSED, NOT_IMPLEMENTED) or check.get("passed"):
         return None
     if check.get("mistake"):
-        return check["mistake"], True
+        return _readable(check["mistake"], check.get("message") or ""), True
     if failure_kind(check) in INCIDENT_KINDS or failure_kind(check) == NOT_HANDED_IN:
         return None
     message = (check.get("message") or "").strip()
@@ -227,6 +227,27 @@ def mistake_of(check: dict) -> tuple[str, bool] | None:
     if named:
         return named.group(1).strip(), True
     return first_sentence(message), False
+
+
+# The error model's names and its repairs carry an operator id as their label (``mutant:sign``,
+# ``repair:swap_items``): an instructor reads the sentence the student was given instead -- a mutant's is
+# written from the reference's code, the same for every student it names -- and, for a repair (the
+# student's own code changed, their own lines), the function it mended and the kind of change.
+_ERROR_MODEL_SAID = re.compile(r"The error model: it looks like (.+?)(?: \([a-z ,+]+\))?\.(?:\s|$)", re.S)
+_REPAIRED = re.compile(r"makes `([A-Za-z_][A-Za-z0-9_]*)` give the expected answers")
+
+
+def _readable(mistake: str, message: str) -> str:
+    """A check's ``mistake`` label as an instructor reads it in the class's list of mistakes."""
+    kind, _, operator = mistake.partition(":")
+    words = operator.replace("_", " ").replace("+", " and ")
+    if kind == "mutant":
+        said = _ERROR_MODEL_SAID.search(message)
+        return said.group(1).strip() if said else f"the error model's {words}"
+    if kind == "repair":
+        mended = _REPAIRED.search(message)
+        return f"one change of {f'`{mended.group(1)}`' if mended else 'the code'} mends it ({words})"
+    return mistake
 
 
 def first_sentence(message: str) -> str:
