@@ -207,6 +207,33 @@ def test_a_slip_made_twice_is_told_as_the_two_changes_that_repair_it(tmp_path):
     assert "`pts2[:, 1:] * P1[2]` to `pts2[:, 1:] * P2[2]`" in told[0].message
 
 
+_LOOP_TRIANGULATION = """
+    def triangulate(P1, P2, pts1, pts2):
+        P1, P2 = np.asarray(P1, np.float64), np.asarray(P2, np.float64)
+        single = np.ndim(pts1) == 1
+        pts1, pts2 = np.atleast_2d(np.asarray(pts1, np.float64)), np.atleast_2d(np.asarray(pts2, np.float64))
+        out = []
+        for (x1, y1), (x2, y2) in zip(pts1, pts2):
+            A = np.array([x1 * P1[2] - P1[0], y1 * P1[2] - P1[1], x2 * P2[2] - P2[0], y2 * P2[2] - P2[1]])
+            X = np.linalg.svd(A)[2][-1]
+            out.append(X[:3] / X[2])
+        out = np.array(out)
+        return {one}
+    """
+
+
+@pytest.mark.parametrize("one", ["out[0] if single else out", "out"])
+def test_a_single_pair_answered_either_way_confirms_the_same_repair(tmp_path, one):
+    """Lab 11's triangulate divided by Z where w belongs: one pair given alone (a confirmation input) gives (3,)
+    in the lab 12 reference's way, (1, 3) in lab 11's; the API says neither, so either confirms the repair --
+    the (3,) one was refused it on three checks of four."""
+    result = grade(mutant(tmp_path, "lab11_two_view", _LOOP_TRIANGULATION.format(one=one)), ["lab11.ex1"],
+                   pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab11.ex1") if c.score < c.max_score]
+    assert failed and all("changing `X[:3] / X[2]` to `X[:3] / X[-1]`" in c.message for c in failed), \
+        [c.message for c in failed]
+
+
 def test_three_slips_get_no_repair(tmp_path):
     """No one change and no pair repairs them: nothing is claimed (a pair that mends two of them
     gives answers still wrong, and is not told)."""

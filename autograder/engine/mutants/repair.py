@@ -2772,6 +2772,16 @@ def _single_point(call) -> list:
                            lambda v: np.ascontiguousarray(v[0]))
 
 
+def _one_point(answer):
+    """An answer to a single point with a leading axis of length 1 dropped ((1, 3) -> (3,)): where the API
+    does not say what one point gives (a triangulated pair), the reference's (1, 3) or (3,) is no truth of
+    the student's convention -- either is compared as the one point it is (a change giving the points
+    transposed, (3, 1), is not that)."""
+    if isinstance(answer, np.ndarray) and answer.ndim >= 2 and answer.shape[0] == 1:
+        return answer[0]
+    return answer
+
+
 def _reordered(call) -> list:
     """The call with its point arrays ((N, 2) or (N, 3) floats, N >= 3, all of one N; no square matrix)
     given in the reverse order, every array alike ([] when it has none): a correspondence set's order is
@@ -3765,6 +3775,7 @@ class _Variants:
         self.small: set = set()      # the variants with the images small (a change in what their size gives only)
         self.turned: set = set()     # the variants with the images turned a quarter (portrait for landscape)
         self.widened: set = set()    # the variants made unlike the check's inputs (see _widened)
+        self.single: set = set()     # the variants given a single point (see _single_point, _one_point)
         self.channels: set = set()   # of keeping, the variants with the images in the other number of channels
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
@@ -3809,7 +3820,10 @@ class _Variants:
             number = said.partition(":")[0]
             if number.isdigit() and int(number) < len(indices):
                 self.writes.setdefault(None if mutant is None else mutant.key, set()).add(_key(every[indices[int(number)]]))
-        return value if isinstance(value, list) and len(value) == len(indices) else None
+        if not (isinstance(value, list) and len(value) == len(indices)):
+            return None
+        confirming = self.confirmations is not None and every is self.confirmations[0]
+        return [_one_point(answer) if confirming and i in self.single else answer for answer, i in zip(value, indices)]
 
     def fix(self, mutant) -> Fix | None:
         """The mutant's changes shown in the student's code (None when one cannot be shown briefly)."""
@@ -3940,9 +3954,10 @@ class _Variants:
                                              self.model.defaults.get(self.function, ()))
                 widened = _widened(self.inputs[i], self.model.defaults.get(self.function, ()))
                 self.widened.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(widened)))
-                variants += widened + _one_enlarged(self.inputs[i])
-                variants += _fewer(self.inputs[i]) + _single_point(self.inputs[i]) + _reordered(self.inputs[i]) \
-                    + _points_moved(self.inputs[i])
+                variants += widened + _one_enlarged(self.inputs[i]) + _fewer(self.inputs[i])
+                single = _single_point(self.inputs[i])
+                self.single.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(single)))
+                variants += single + _reordered(self.inputs[i]) + _points_moved(self.inputs[i])
                 variants += _rescaled(self.inputs[i], _up_to_scale(self.model.source).get(self.function, ()))
                 translated = _translated(self.inputs[i], _up_to_scale(self.model.source).get(self.function, ()))
                 self.translated.update(range(len(self.inputs) + len(variants), len(self.inputs) + len(variants) + len(translated)))
@@ -4013,6 +4028,7 @@ class _Variants:
                 runner.prepare(self.model.source, self.model.module, every, max(1.0, self.clock.wall_left()))
                 indices = list(range(len(self.inputs), len(every)))
                 wanted = dict(zip(indices, runner.run((), indices, max(0.5, self.clock.wall_left()))))
+                wanted.update({i: _one_point(wanted[i]) for i in self.single.intersection(wanted)})
                 self.confirmations = (every, wanted, [i for i in indices if naming.error_kind(wanted[i]) is None])
             except HelperFailed:   # the reference too slow on them (a whole pipeline): no confirmation here
                 self.confirmations = (every, {}, None)
