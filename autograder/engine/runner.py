@@ -860,8 +860,10 @@ def _another_labs_module(message: str, module: str) -> str:
     lab = next((lab for lab in discover().values() if lab.module == missing.group(1)), None)
     if lab is None:
         return ""
-    return (f"\n  {lab.module}.py is the file of {lab.key}, which {module}.py imports: hand it in beside "
-            f"{module}.py (the grader imports it from the same folder), or copy what {module}.py uses from it")
+    # (measured: the import raised for that module, whatever the code that asked for it)
+    return "\n  " + measured(f"{lab.module}.py is the file of {lab.key}, which {module}.py imports: hand it in beside "
+                             f"{module}.py (the grader imports it from the same folder), or copy what {module}.py "
+                             "uses from it")
 
 
 def _innermost_frame(traceback_text: str) -> str:
