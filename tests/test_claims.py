@@ -540,7 +540,7 @@ def test_a_transposed_design_matrix_reshaped_row_wise_is_not_told_it_reshaped_co
     messages = " ".join(c.message for c in check_results(result, "lab11.ex4") if not c.passed)
     # (the check's own reading of it, or -- where a change confirms where the values first go wrong -- the
     # helper's answer located as the transpose of the reference's: either way not the reshape)
-    assert "F comes out transposed, as if f were reshaped column by column; your code reshapes f row by row" \
+    assert "the normalised F comes out transposed, as if f were reshaped column by column; your code reshapes f row by row" \
         in messages or "`_eight_point_core(" in messages and "gives the transpose of a value" in messages, messages
     assert "(order='F')" not in messages
     labels = [c.mistake or "" for c in check_results(result, "lab11.ex4") if not c.passed]

@@ -1332,9 +1332,9 @@ FUNDAMENTAL_MISTAKES = {   # keys of the answers make_lab11_figures.py stores fo
         "the null vector f was reshaped column by column (order='F'): F = f.reshape(3, 3)",
         asks=reshapes(3, 3) & ~reshapes(3, 3, order="F") & ~expr("_.reshape(3, 3).T")
         & ~expr("_.reshape((3, 3)).T") & ~expr("np.reshape(_, (3, 3)).T"),
-        instead="F comes out transposed, as if f were reshaped column by column; your code reshapes f row by "
-                "row, so look at the order of the columns of A (each row is [x2 x1, x2 y1, x2, y2 x1, y2 y1, "
-                "y2, x1, y1, 1])"), TRANSPOSED_RESHAPE),
+        instead="the normalised F comes out transposed, as if f were reshaped column by column; your code "
+                "reshapes f row by row, so look at the order of the columns of A (each row is [x2 x1, x2 y1, x2, "
+                "y2 x1, y2 y1, y2, x1, y1, 1])"), TRANSPOSED_RESHAPE),
     "design_columns": "two columns of A are exchanged (x2 y1 and y2 x1): each row is "
                       "[x2 x1, x2 y1, x2, y2 x1, y2 y1, y2, x1, y1, 1]",
     "sheet_row": SHEET_ROW,
