@@ -42,7 +42,7 @@ def killing_grading(files, *arguments):
 def _graded(monkeypatch, grading, students):
     monkeypatch.setattr(cluster, "grade_files", grading)
     got = {}
-    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as local, \
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0") as local, \
             distributed.Client(local) as client:
         cluster.grade_on_dask(local.scheduler_address, [Entry(s) for s in students], (),
                               lambda entry, outcome: got.setdefault(entry.student_id, outcome), client=client)
