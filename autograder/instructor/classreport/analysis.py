@@ -233,7 +233,9 @@ def mistake_of(check: dict) -> tuple[str, bool] | None:
 # ``repair:swap_items``): an instructor reads the sentence the student was given instead -- a mutant's is
 # written from the reference's code, the same for every student it names -- and, for a repair (the
 # student's own code changed, their own lines), the function it mended and the kind of change.
-_ERROR_MODEL_SAID = re.compile(r"The error model: it looks like (.+?)(?: \([a-z ,+]+\))?\.(?:\s|$)", re.S)
+_ERROR_MODEL = "The error model: it looks like "
+_ERROR_MODEL_SAID = re.compile(r"(.+?)(?: \([a-z ,+]+\))?\.(?:\s|$)", re.S)
+_SENTENCE_CHARS = 600   # of the message read for the sentence (a lazy match over a bounded stretch)
 _REPAIRED = re.compile(r"makes `([A-Za-z_][A-Za-z0-9_]*)` give the expected answers")
 
 
@@ -242,7 +244,9 @@ def _readable(mistake: str, message: str) -> str:
     kind, _, operator = mistake.partition(":")
     words = operator.replace("_", " ").replace("+", " and ")
     if kind == "mutant":
-        said = _ERROR_MODEL_SAID.search(message)
+        start = message.find(_ERROR_MODEL)
+        said = _ERROR_MODEL_SAID.match(message, start + len(_ERROR_MODEL), start + len(_ERROR_MODEL) + _SENTENCE_CHARS) \
+            if start >= 0 else None
         return said.group(1).strip() if said else f"the error model's {words}"
     if kind == "repair":
         mended = _REPAIRED.search(message)
