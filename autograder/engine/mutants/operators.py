@@ -24,7 +24,7 @@ import itertools
 import math
 import os
 import re
-from collections import Counter
+from collections import Counter, deque
 from dataclasses import dataclass
 
 from ...loading.parsing import parse
@@ -397,8 +397,8 @@ def mutated_defs(tree: ast.Module, edits, source: str | None = None) -> ast.Modu
     Raises ValueError as :func:`apply_edits` does."""
     defs = _defs(tree)
     lines = source.splitlines(keepends=True) if source is not None else None
-    changed = {}
-    for def_name, _, _, _ in edits:
+    changed, wanted = {}, {}
+    for def_name, ordinal, _, _ in edits:
         if def_name not in defs:
             raise ValueError(f"no def {def_name}")
         if def_name not in changed:
@@ -408,22 +408,87 @@ def mutated_defs(tree: ast.Module, edits, source: str | None = None) -> ast.Modu
                 changed[def_name] = _parse("".join(lines[first - 1:fn.end_lineno])).body[0]
             else:
                 changed[def_name] = copy.deepcopy(fn)
+        wanted.setdefault(def_name, set()).add(ordinal)
+    # (each def walked once, only as far as its last edit: the located nodes, their places and the
+    # locations a new node there inherits -- a mutant is built thousands of times in a grading)
+    found = {name: _located(changed[name], ordinals) for name, ordinals in wanted.items()}
     located = []
     for def_name, ordinal, operator, payload in edits:
-        nodes = list(ast.walk(changed[def_name]))
-        if not 0 <= ordinal < len(nodes):
+        if ordinal not in found[def_name]:
             raise ValueError(f"no node {ordinal} in {def_name}")
-        located.append((nodes[ordinal], operator, payload))
-    targets = {id(node) for node, _, _ in located}
-    for node, _, _ in located:
-        if ({id(n) for n in ast.walk(node)} - {id(node)}) & targets:
-            raise ValueError("overlapping edits")
-    for fn in changed.values():
-        parents = _parents(fn)
-        for node, operator, payload in located:
-            if id(node) in parents:
-                _replace(parents, node, _MAKE[operator](node, payload))
-    return ast.fix_missing_locations(ast.Module(list(changed.values()), []))
+        located.append((found[def_name][ordinal], operator, payload))
+    if len(located) > 1:
+        targets = {id(place[0]) for place, _, _ in located}
+        for (node, *_), _, _ in located:
+            if ({id(n) for n in ast.walk(node)} - {id(node)}) & targets:
+                raise ValueError("overlapping edits")
+    for (node, parent, field, index, inherited), operator, payload in located:
+        if parent is None:   # (the def itself is no place of a change)
+            continue
+        new = _MAKE[operator](node, payload)
+        _replace({id(node): (parent, field, index)}, node, new)
+        _fix_locations(new, inherited)
+    return ast.Module(list(changed.values()), [])
+
+
+_LOCATION = ("lineno", "col_offset", "end_lineno", "end_col_offset")
+
+
+def _located(root: ast.AST, ordinals: set) -> dict:
+    """ordinal -> (node, parent, field, index, inherited) for the nodes at ``ordinals`` in
+    ``ast.walk(root)``'s order (breadth first, fields in order): where each is held, and the
+    location :func:`ast.fix_missing_locations` would give a new node put there (the nearest
+    enclosing node's, attribute by attribute). The walk stops at the last ordinal asked."""
+    last = max(ordinals)
+    todo = deque([(root, None, None, None)])   # (node, its parent's entry, field, index)
+    found, count = {}, 0
+    while todo and count <= last:
+        entry = todo.popleft()
+        node = entry[0]
+        if count in ordinals:
+            found[count] = entry
+        count += 1
+        for name, value in ast.iter_fields(node):
+            if isinstance(value, ast.AST):
+                todo.append((value, entry, name, None))
+            elif isinstance(value, list):
+                todo.extend((item, entry, name, position) for position, item in enumerate(value)
+                            if isinstance(item, ast.AST))
+    return {ordinal: (node, None if above is None else above[0], field, index, _inherited(above))
+            for ordinal, (node, above, field, index) in found.items()}
+
+
+def _inherited(entry) -> tuple:
+    """The location :func:`ast.fix_missing_locations` hands down from ``entry`` (a node's entry in
+    :func:`_located`'s walk, its ancestors' chained) to a child missing one."""
+    chain = []
+    while entry is not None:
+        chain.append(entry[0])
+        entry = entry[1]
+    location = (1, 0, 1, 0)
+    for node in reversed(chain):
+        location = _own_location(node, location)
+    return location
+
+
+def _own_location(node: ast.AST, inherited: tuple) -> tuple:
+    """The location ``node`` passes on to children missing one (as :func:`ast.fix_missing_locations`)."""
+    if not node._attributes:
+        return inherited
+    return tuple(inherited[k] if name not in node._attributes or getattr(node, name, None) is None
+                 else getattr(node, name) for k, name in enumerate(_LOCATION))
+
+
+def _fix_locations(node: ast.AST, inherited: tuple) -> None:
+    """:func:`ast.fix_missing_locations` for a subtree put where ``inherited`` is the location around it."""
+    todo = [(node, inherited)]
+    while todo:
+        node, inherited = todo.pop()
+        for k, name in enumerate(_LOCATION):
+            if name in node._attributes and getattr(node, name, None) is None:
+                setattr(node, name, inherited[k])
+        own = _own_location(node, inherited)
+        todo.extend((child, own) for child in ast.iter_child_nodes(node))
 
 
 def _replace(parents, node, new) -> None:
