@@ -306,3 +306,23 @@ def test_a_dp_whose_default_penalty_is_too_strong_for_a_deep_edge_is_not_told_it
     edge = next(c for c in check_results(result, "lab12.ex5") if c.name.startswith("dp_stereo crosses a deep"))
     assert edge.score == 0, "the deep step smoothed over loses the point"
     assert edge.mistake != lab12.JUMPS_LIMITED and "is not taken at any penalty" not in edge.message, edge.message
+
+
+def test_code_that_reads_cost_is_not_told_it_ignores_it_when_both_costs_give_one_map(tmp_path):
+    """Course code with a branch per cost whose disparities come out the same under both (OpenCV-4 code reading
+    cv2.minMaxLoc's location under OpenCV 5 -- third-party audit of 2026-12-07): it reads cost, so "the cost
+    argument is ignored" would be untrue; the map is told as the same, and where to look. A block_matching that
+    never reads cost is still told it ignores it (the table's case, tests/test_lab12.py)."""
+    submission = mutant(tmp_path, "lab12_stereo", """
+        _block_matching = block_matching
+        def block_matching(left, right, max_disparity=64, block_size=9, cost="ssd"):
+            if cost == "ncc":
+                return _block_matching(left, right, max_disparity, block_size, "ssd")
+            return _block_matching(left, right, max_disparity, block_size, cost)
+        """)
+    failed = [c for c in check_results(grade(submission, ["lab12.ext1"], pictures="none", include_hidden=False),
+                                       "lab12.ext1") if c.score < c.max_score]
+    gain = [c for c in failed if c.name.startswith("NCC is robust to a brightness")]
+    assert gain, failed
+    assert "ignored" not in gain[0].message and gain[0].mistake != "the cost argument is ignored", gain[0]
+    assert "although your block_matching reads cost" in gain[0].message

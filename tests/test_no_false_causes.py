@@ -64,6 +64,23 @@ def test_other_ways_of_keeping_the_highest_score(source, highest):
     assert bool(found(KEEPS_HIGHEST, source, "f")) == highest
 
 
+@pytest.mark.parametrize("source, highest, lowest", [
+    # (OpenCV's template matching: the location of the best score read from cv2.minMaxLoc -- third-party audit
+    # of 2026-12-07, course code told to "keep the HIGHEST score" where it reads the maximum's location)
+    ("def f(strip, patch):\n    s = cv2.matchTemplate(strip, patch, cv2.TM_CCOEFF_NORMED)\n"
+     "    _, _, _, max_loc = cv2.minMaxLoc(s)\n    return max_loc[0]\n", True, False),
+    ("def f(strip, patch):\n    s = cv2.matchTemplate(strip, patch, cv2.TM_SQDIFF)\n"
+     "    _, _, min_loc, _ = cv2.minMaxLoc(s)\n    return min_loc[0]\n", False, True),
+    ("def f(s):\n    return cv2.minMaxLoc(s)[3][0]\n", True, False),
+    ("def f(s):\n    return cv2.minMaxLoc(s)[-2][0]\n", False, True),
+    # (a location unpacked and never read keeps nothing)
+    ("def f(s):\n    lo, hi, min_loc, max_loc = cv2.minMaxLoc(s)\n    return hi\n", False, False),
+])
+def test_the_location_read_from_min_max_loc_says_which_extreme_is_kept(source, highest, lowest):
+    assert bool(found(KEEPS_HIGHEST, source, "f")) == highest
+    assert bool(found(KEEPS_LOWEST, source, "f")) == lowest
+
+
 def test_the_lowest_cost_is_seen_through_a_negation_too():
     assert found(KEEPS_LOWEST, "def f(cost):\n    return np.argmax(-cost, axis=0)\n", "f")
     assert found(KEEPS_LOWEST, "def f(cost):\n    return cost.argmin(axis=0)\n", "f")
@@ -411,3 +428,35 @@ def test_a_statement_moved_so_that_a_step_goes_unread_is_no_fix():
              and "extrinsic" in str(student.fix(m).changes)]
     assert moves and all(student.leaves_a_step_unused(m) for m in moves)
     assert not any(student.leaves_a_step_unused(m) for m in student.mutants("graded") if m.edits[0][2] != "move")
+
+
+@pytest.mark.parametrize("source, by_svd", [
+    # an SVD solve, denormalised with inverses of the normalising transforms
+    ("def f(A, T1, T2):\n    _, _, Vt = np.linalg.svd(A)\n    F = Vt[-1].reshape(3, 3)\n"
+     "    return np.linalg.inv(T2).T @ F @ np.linalg.inv(T1)\n", True),
+    # 8 unknowns by the normal equations, the SVD only for rank 2 (third-party course code, audit of 2026-12-07)
+    ("def f(A, b):\n    f = np.linalg.inv(A.T @ A + 1e-9) @ (A.T @ b)\n    U, S, Vt = np.linalg.svd(f.reshape(3, 3))\n"
+     "    return U @ np.diag([S[0], S[1], 0]) @ Vt\n", False),
+    ("def f(A, b):\n    f = np.linalg.inv(np.dot(A.T, A)).dot(A.T).dot(b)\n    return np.linalg.svd(f)\n", False),
+    ("def f(A, b):\n    f = np.linalg.lstsq(A, b, rcond=None)[0]\n    return np.linalg.svd(f)\n", False),
+])
+def test_an_svd_beside_the_normal_equations_is_not_called_the_solve(source, by_svd):
+    """"Your code solves by np.linalg.svd" (lab 10's and lab 11's hints on an entry fixed to 1) is said only of
+    code whose least squares is not solved otherwise."""
+    from autograder.labs.code_signs import SOLVES_BY_SVD
+
+    assert bool(found(SOLVES_BY_SVD, source, "f")) == by_svd
+
+
+@pytest.mark.parametrize("test, marks", [
+    ("if d == 0:\n            best = cost", False),   # a running minimum started at d = 0 (course code)
+    ("if x < d:\n            cost = 1e9", True),
+    ("if d > x:\n            continue", True),
+])
+def test_a_test_of_d_against_a_number_is_no_mark_of_the_columns_without_a_partner(test, marks):
+    """Lab 12's tip for matches left of the right image says "your code marks the columns without a partner" only
+    of code that tests d against a column (third-party audit of 2026-12-07: `if d == 0:` was read as one)."""
+    from autograder.labs.lab12 import _marks_left_border
+
+    source = f"def f(left, right, n):\n    best = None\n    for d in range(n):\n        cost = left - right\n        {test}\n    return best\n"
+    assert _marks_left_border(read_code(source).functions["f"]) == marks

@@ -604,6 +604,29 @@ def test_an_opencv_constant_given_another_parameters_place_is_named():
         assert not one(f"def f(out, c, color, a, b, K, img, mx, my, M, size, ends):\n    return {right}\n"), right
 
 
+def test_a_name_a_later_loop_assigns_before_reading_it_is_not_the_last_turns_value():
+    """Course code normalising two point sets with two loops over one name (third-party audit of 2026-12-07):
+    the second loop assigns `norm` before it reads it, so no read there is of the first loop's last turn."""
+    two_loops = """
+        def normalise(x1, x2):
+            max1 = 0
+            for p in x1:
+                norm = np.linalg.norm(p)
+                if norm > max1:
+                    max1 = norm
+            max2 = 0
+            for p in x2:
+                {second}
+                if norm > max2:
+                    max2 = norm
+            return max1, max2
+        """
+    assert not one(two_loops.format(second="norm = np.linalg.norm(p)"))
+    # (a later loop that reads it before assigning it does read the first loop's last turn)
+    assert one(two_loops.format(second="scale = norm; norm = np.linalg.norm(p)")) == {
+        "the last turn's value is used after the loop, not the best one kept"}
+
+
 def test_the_last_turns_value_read_after_a_loop_that_kept_the_best_is_named():
     ransac = """
         def homography_ransac(src, dst, threshold=3.0, n_iters=500, seed=None):

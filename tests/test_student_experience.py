@@ -264,6 +264,20 @@ def translation_matrix(tx, ty):
     assert "printed" not in terminal_text(grade(REFERENCE, ["lab07.ex1"], pictures="none"))
 
 
+def test_warnings_alone_are_not_called_debugging_prints(tmp_path):
+    """NumPy's "divide by zero encountered" is written by Python's warnings module, not printed by the student
+    (third-party audit of 2026-12-07): the line says warnings, and asks to remove no print."""
+    folder = submission_from_source(tmp_path, LAB07, (REFERENCE / f"{LAB07}.py").read_text() + """
+_reference = translation_matrix
+def translation_matrix(tx, ty):
+    np.float64(1.0) / np.float64(0.0)
+    return _reference(tx, ty)
+""")
+    text = " ".join(terminal_text(grade(folder, ["lab07.ex1"], pictures="none"), page="feedback.html").split())
+    assert "Your code raised warnings in" in text and "feedback.html" in text, text
+    assert "printed output" not in text and "remove" not in text
+
+
 def test_gradescope_output_keeps_matrices_in_a_preformatted_block(tmp_path):
     folder = submission_from_source(tmp_path, LAB07, (REFERENCE / f"{LAB07}.py").read_text() + """
 def translation_matrix(tx, ty):

@@ -636,15 +636,43 @@ def _running_best(highest: bool) -> Callable[[ast.AST], bool]:
     return test
 
 
+def _location_of_extreme(highest: bool) -> Callable[[ast.AST], bool]:
+    """OpenCV's location of the largest (``highest``) or smallest value read and used: ``_, _, _, loc =
+    cv2.minMaxLoc(scores)`` with ``loc`` read later, or ``cv2.minMaxLoc(scores)[3]`` (the minimum's: [2])."""
+    index = 3 if highest else 2
+
+    def test(function) -> bool:
+        loaded = {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+        for node in ast.walk(function):
+            call = node.value if isinstance(node, (ast.Assign, ast.Subscript)) else None
+            if not (isinstance(call, ast.Call) and _path(call.func).rsplit(".", 1)[-1] == "minMaxLoc"):
+                continue
+            if isinstance(node, ast.Subscript):
+                try:
+                    if ast.literal_eval(node.slice) in (index, index - 4):
+                        return True
+                except (ValueError, TypeError, SyntaxError, MemoryError, RecursionError):
+                    pass
+                continue
+            for target in node.targets:
+                if isinstance(target, (ast.Tuple, ast.List)) and len(target.elts) == 4 \
+                        and isinstance(target.elts[index], ast.Name) and target.elts[index].id in loaded:
+                    return True
+        return False
+    return test
+
+
 KEEPS_HIGHEST = (Predicate("picks the highest score", _picks(True, SCORE_NAMES), kind="all")
                  | Predicate("sorts", _argsort_end(last=True)) | keyword("max", "key")
                  | Predicate("keeps a larger score", _loop_keeps(ast.Gt, SCORE_NAMES))
                  | Predicate("keeps a running best", _running_best(highest=True))
+                 | Predicate("reads the maximum's location", _location_of_extreme(highest=True))
                  ).saying("keeps the highest score (argmax, or argmin of the score negated)")
 KEEPS_LOWEST = (Predicate("picks the lowest cost", _picks(False, COST_NAMES), kind="all")
                 | Predicate("sorts", _argsort_end(last=False)) | keyword("min", "key")
                 | Predicate("keeps a smaller cost", _loop_keeps(ast.Lt, COST_NAMES))
                 | Predicate("keeps a running best", _running_best(highest=False))
+                | Predicate("reads the minimum's location", _location_of_extreme(highest=False))
                 ).saying("keeps the lowest cost (argmin, or argmax of the cost negated)")
 
 

@@ -174,6 +174,30 @@ CAMERA_WITHOUT_K = (Predicate("builds a camera [R | t] without K", _camera_witho
 
 
 # ------------------------------------------------------------------ shapes that say where the index went
+def _inverts_a_gram_matrix(function) -> bool:
+    """The normal equations solved by an inverse: ``np.linalg.inv(A.T @ A)`` (a product with a transpose
+    inside the inverse), where inverting a normalising transform (``np.linalg.inv(T)``) has none."""
+    for node in ast.walk(function):
+        if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "inv" and node.args:
+            inside = list(ast.walk(node.args[0]))
+            product = any((isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult))
+                          or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("dot", "matmul"))
+                          for n in inside)
+            transposed = any((isinstance(n, ast.Attribute) and n.attr == "T")
+                             or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "transpose")
+                             for n in inside)
+            if product and transposed:
+                return True
+    return False
+
+
+# Least squares over fewer unknowns (an entry fixed to 1), where an SVD may still be called for another step (F's
+# rank 2): a solver's call, or the normal equations inverted.
+SOLVES_LEAST_SQUARES = calls_any("np.linalg.lstsq", "np.linalg.solve", "np.linalg.pinv", "scipy.linalg.lstsq") \
+    | Predicate("inverts A^T A (the normal equations)", _inverts_a_gram_matrix)
+SOLVES_BY_SVD = (calls("np.linalg.svd") & ~SOLVES_LEAST_SQUARES).saying("solves by np.linalg.svd")
+
+
 LAST_VT_OF_A_STACK = "the last row of a batched SVD's Vt is taken (Vt[-1]) instead of each system's (Vt[:, -1])"
 TAKES_LAST_ROW_OF_VT = takes_last_row_of_vt()
 

@@ -35,6 +35,7 @@ from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe,
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed
+from .code_signs import SOLVES_BY_SVD
 from .lab09 import (OBJECT_POINTS_ROW_BY_ROW, advise_nan_behind, call_behind, expect_points, judge_in_front, judge_points,
                     judge_single_point, make_points_probe, pinhole_formulas, point_error)
 
@@ -561,8 +562,7 @@ TWELVE_COLUMNS = Predicate("builds A with 12 columns", _twelve_columns)
 FIXED_P23_HINT = Hint(
     "It looks like P[2, 3] was fixed to 1 (11 unknowns, least squares), which cannot express this "
     "camera: solve A p = 0 for all 12 entries by SVD (the last row of Vt).",
-    asks=(calls("np.linalg.svd") & ~calls_any("np.linalg.lstsq", "np.linalg.solve", "np.linalg.pinv")).saying(
-        "solves by np.linalg.svd"),
+    asks=SOLVES_BY_SVD,
     instead="Your code {found}: " + checklist(
         "", ("A has 12 columns (P[2, 3] is an unknown too)", TWELVE_COLUMNS), ("p is the last row of Vt",
                                                                                 takes_last_row_of_vt()),

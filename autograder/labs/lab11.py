@@ -40,7 +40,8 @@ from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canva
 from ..engine.pictures import side_by_side, svg_points
 from ..engine.registry import Lab
 from ..loading.reading import outliers_selected
-from .code_signs import CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, SKIPS_VERTICAL, constant_factor, factor_words, name_batched_vt_row
+from .code_signs import (CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, SKIPS_VERTICAL, SOLVES_BY_SVD, constant_factor, factor_words,
+                         name_batched_vt_row)
 from .lab09 import COPY_HINT
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
@@ -48,9 +49,6 @@ lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
 # Names and sentences that ask for code, held to the student's code (autograder.engine.claims).
 measured(truth.LINES_UNIT_LENGTH)
 measured(truth.LINES_BY_C)
-# Solving A f = 0 by SVD alone: an 8-unknown least-squares solve (F[2, 2] = 1) may use svd for rank 2.
-SOLVES_BY_SVD = (calls("np.linalg.svd") & ~calls_any("np.linalg.lstsq", "np.linalg.solve", "np.linalg.pinv")
-                 ).saying("solves by np.linalg.svd")
 TRANSPOSES = (mentions(".T") | calls("np.transpose") | calls(".transpose")).saying("transposes")
 DIVIDES_BY_W = THIRD_COORDINATE.saying("divides by the last entry")
 
@@ -1182,8 +1180,7 @@ def nine_unknowns(matrix: str) -> str:
                                         "by least squares", SOLVED_BY_SVD_ALONE)))
 
 
-SOLVED_BY_SVD_ALONE = (calls("np.linalg.svd") & ~calls_any("np.linalg.lstsq", "np.linalg.solve", "np.linalg.pinv")
-                       ).saying("solves by np.linalg.svd alone")
+SOLVED_BY_SVD_ALONE = SOLVES_BY_SVD.saying("solves by np.linalg.svd alone")
 
 
 FIXED_E22_HINT = Hint(

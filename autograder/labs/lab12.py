@@ -35,6 +35,7 @@ from ..engine.compare import (HALF_PIXEL_OFFSETS, at_precision, blurred_differen
 from ..engine.claims import (calls_any, checklist, divides_by, from_code, guard, guessed, look_at, measured,
                              passes_parameters, takes_last_row_of_vt, where_to_look, wherever_written)
 from ..engine.forms import shape_form
+from ..engine.ignored import never_read
 from ..engine.hints import (KEEPS_HIGHEST, KEEPS_LOWEST, TO_FLOAT, TO_UINT8, Hint, Predicate, _path, calls, code_of, expr,
                             keyword, mentions,
                             size_given_as_shape)
@@ -154,7 +155,11 @@ def _marks_left_border(function) -> bool:
             return True
         if isinstance(n, ast.Slice) and _disparity_name(n.upper) and n.lower is None:   # costs[d, :, :d] = ...
             return True
-        if isinstance(n, ast.Compare) and any(_disparity_name(m) for m in [n.left, *n.comparators]):
+        # (a test of d against a column -- `x < d`, `x - d >= 0` --, not against a number: `if d == 0:` starts a
+        # running minimum; third-party audit of 2026-12-07)
+        operands = [n.left, *n.comparators] if isinstance(n, ast.Compare) else []
+        if any(_disparity_name(m) for m in operands) and \
+                not all(_disparity_name(m) or isinstance(m, ast.Constant) for m in operands):
             return True
     return False
 
@@ -2358,6 +2363,14 @@ def ncc_gain(t):
     # Two equal maps show an ignored cost only when they are informative: a map of zeros under
     # both costs (OpenCV-4 code reading cv2.minMaxLoc's location under OpenCV 5) says nothing of it.
     if isinstance(ssd, np.ndarray) and ssd.shape == got.shape and same_informative_result(ssd, got):
+        fn = code_of(t).functions.get("block_matching")
+        if fn is not None and "cost" not in never_read(fn):
+            # (code that reads cost -- a branch for each -- is not ignoring it: whatever each cost computes, the
+            # disparities come out one map; a location read alike from both costs' scores, under the OpenCV major
+            # the code was not written for, is one way -- audit of 2026-12-07)
+            t.fail(from_code(f"{what} gives exactly the map cost=\"ssd\" gives on this pair, although your "
+                             "block_matching reads cost: whatever each cost computes, the disparities come out the "
+                             "same -- look at how a disparity is taken from each cost's scores."))
         t.fail(f"{what} gives exactly the SSD result: the cost argument is ignored.",
                mistake="the cost argument is ignored")
     # cost="ssd" robust where cost="ncc" is not: each cost runs the other's matching (SSD cannot be robust

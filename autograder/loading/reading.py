@@ -1274,16 +1274,45 @@ def _last_turn_used(name, function) -> list[Finding]:
                                         f"{name} (line {_line(read)}) reads `{original}` after the loop: that is the "
                                         f"value of the loop's last turn, while the best one was kept in `{copy}` "
                                         f"(line {_line(statement)} on); use `{copy}` there", certain=True)]
-            reads, stores = {}, set()
-            for n in ast.walk(statement):
-                if isinstance(n, ast.Name):
-                    if isinstance(n.ctx, ast.Load):
-                        reads.setdefault(n.id, n)
-                    else:
-                        stores.add(n.id)
-            following.update(dict.fromkeys(stores - reads.keys()))
-            following.update(reads)   # (read in the statement that assigns it: a read, as the value before)
+            following.update(_first_uses(statement))
     return []
+
+
+_COMPOUND = (ast.For, ast.AsyncFor, ast.While, ast.If, ast.With, ast.AsyncWith, ast.Try) + \
+    ((ast.TryStar,) if hasattr(ast, "TryStar") else ())
+
+
+def _first_uses(statement) -> dict:
+    """name -> its first read in ``statement`` as it runs (the node), or None where it is assigned before any
+    read of it. A simple statement's reads come first (`x = x + 1` reads the value before it); a compound
+    statement's header comes first, then its blocks in order (`for ...: norm = ...; if norm > best:` assigns
+    `norm` before reading it -- the value from before the loop is not read there)."""
+    if not isinstance(statement, _COMPOUND):
+        reads, stores = {}, set()
+        for n in ast.walk(statement):
+            if isinstance(n, ast.Name):
+                if isinstance(n.ctx, ast.Load):
+                    reads.setdefault(n.id, n)
+                else:
+                    stores.add(n.id)
+        return {**dict.fromkeys(stores - reads.keys()), **reads}
+    first: dict = {}
+    head = [statement.iter] if isinstance(statement, (ast.For, ast.AsyncFor)) else \
+        [statement.test] if isinstance(statement, (ast.While, ast.If)) else \
+        [item.context_expr for item in getattr(statement, "items", ())]
+    bound = [statement.target] if isinstance(statement, (ast.For, ast.AsyncFor)) else \
+        [item.optional_vars for item in getattr(statement, "items", ()) if item.optional_vars is not None]
+    for part in head + bound:
+        for n in ast.walk(part):
+            if isinstance(n, ast.Name):
+                first.setdefault(n.id, n if isinstance(n.ctx, ast.Load) else None)
+    blocks = [getattr(statement, field, []) for field in ("body", "orelse")] + \
+        [handler.body for handler in getattr(statement, "handlers", ())] + [getattr(statement, "finalbody", [])]
+    for block in blocks:
+        for inner in block:
+            for name, node in _first_uses(inner).items():
+                first.setdefault(name, node)
+    return first
 
 
 # ------------------------------------------------------------------ a ufunc's third argument

@@ -7,6 +7,8 @@ cursor, clear the screen or redraw the table.
 
 from __future__ import annotations
 
+import re
+
 from rich.console import Console
 from rich.table import Table
 from rich.text import Text
@@ -81,9 +83,36 @@ def printed_output_line(result: GradingResult, page=None, elsewhere: str = "") -
     exercises = list(dict.fromkeys(e.id for e, _ in checks))
     where = (f"read it in {page} under \"what your code printed\"" if page
              else elsewhere or "write the feedback page (drop --no-html) to read it")
-    return (f"Your code printed output in {len(checks)} checks ({amount} kept, at most 4 KB per call) of"
-            f" {', '.join(exercises[:6])}{' ...' if len(exercises) > 6 else ''}; "
-            f"{where}. Printing slows grading: remove debugging prints when done.")
+    listed = f"{', '.join(exercises[:6])}{' ...' if len(exercises) > 6 else ''}"
+    if all(_warnings_only(c.output) for _, c in checks):
+        # (NumPy's "divide by zero encountered", written by Python's warnings, is no print of the student's)
+        return (f"Your code raised warnings in {len(checks)} check{'s' * (len(checks) != 1)} ({amount} kept) of "
+                f"{listed}; {where.replace('read it', 'read them')}. "
+                "A warning costs no points, but it often shows where a value went wrong (a division by zero, "
+                "an overflow).")
+    return (f"Your code printed output in {len(checks)} check{'s' * (len(checks) != 1)} ({amount} kept, at most 4 KB "
+            "per call) of"
+            f" {listed}; {where}. Printing slows grading: remove the prints you no longer need.")
+
+
+# A warning as Python's warnings module writes it: "file.py:12: RuntimeWarning: ..." and the line of code after.
+_WARNING = re.compile(r"^.{0,400}?:\d+: \w*Warning: .{0,2000}$")
+
+
+def _warnings_only(output: str) -> bool:
+    """Whether ``output`` is only warnings written by Python's warnings module (each with its line of code)."""
+    lines = [line for line in output.splitlines() if line.strip()]
+    if not lines:
+        return False
+    expected_code = False
+    for line in lines:
+        if _WARNING.match(line):
+            expected_code = True
+        elif expected_code and line.startswith(" "):
+            expected_code = False
+        else:
+            return False
+    return True
 
 
 def render_written(console: Console, written) -> None:
