@@ -149,3 +149,13 @@ def test_any_decoding_error_is_a_transport_error(header):
 def test_control_characters_are_stripped_for_the_terminal():
     shown = printable("\x1b[2J\x1b[Hok\x1b]0;title\x07 \u202eevil\r\nnext\tcolumn\x9b")
     assert shown == "[2J[Hok]0;title evil\nnext\tcolumn"
+
+
+def test_unicode_line_separators_break_lines_as_newlines_do_and_invisible_marks_go():
+    """U+2028/U+2029 start a line in some renderers: they become the newline a message may hold anyway (kept
+    inside its labelled block); bidirectional marks (U+061C), word joiners and byte-order marks are removed,
+    zero-width joiners kept (names written in Persian or Hindi need them) -- hostile round of 2026-12-07."""
+    assert printable("raised\u2028\u2502 total \u2502 65 / 65\u2029x") == "raised\n\u2502 total \u2502 65 / 65\nx"
+    assert printable("a\u061cb\u2060c\ufeffd\u200de") == "abcd\u200de"
+    from autograder.loading.text import one_line, shown
+    assert shown("a\u2028b") == "a\\u2028b" and one_line("a\u2029b") == "a b"

@@ -5,8 +5,13 @@ from __future__ import annotations
 import re
 
 # C0 controls but tab and newline, DEL, C1 controls (ESC and CSI start terminal
-# commands), and the bidirectional overrides that make text read other than it is.
-_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+# commands), the bidirectional marks and overrides that make text read other than it is,
+# and invisible operators (word joiner, byte-order mark). Zero-width joiners stay: names in
+# Persian or Hindi need them to be written right.
+_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2060-\u2064"
+                      "\u2066-\u2069\ufeff]")
+# Unicode's line and paragraph separators: a line break like any other, shown as one.
+_SEPARATOR = re.compile("[\u2028\u2029]")
 
 
 def printable(text) -> str:
@@ -15,7 +20,7 @@ def printable(text) -> str:
     >>> printable("ok\\x1b[2J\\x1b[H73/73\\r\\n")
     'ok[2J[H73/73\\n'
     """
-    return _CONTROL.sub("", str(text).replace("\r\n", "\n"))
+    return _CONTROL.sub("", _SEPARATOR.sub("\n", str(text).replace("\r\n", "\n")))
 
 
 _SURROGATE = re.compile("[\udc80-\udcff]")
@@ -29,7 +34,7 @@ def shown(name, limit: int = 160) -> str:
     'ali\\\\x1bce\\\\xff.py'
     """
     text = _SURROGATE.sub(lambda m: f"\\x{ord(m.group()) - 0xDC00:02x}", str(name))
-    text = re.sub("[\x00-\x1f]|" + _CONTROL.pattern, lambda m: f"\\x{ord(m.group()):02x}"
+    text = re.sub("[\x00-\x1f\u2028\u2029]|" + _CONTROL.pattern, lambda m: f"\\x{ord(m.group()):02x}"
                   if ord(m.group()) < 256 else f"\\u{ord(m.group()):04x}", text)
     return text if len(text) <= limit else text[:limit - 1] + "…"
 
