@@ -176,18 +176,39 @@ def test_a_change_in_place_costs_one_check_only(toy_lab, tmp_path):
     assert scores == {"scale([1, 2, 3], 2)": 0, "scale([1, 2], 3)": 1}
 
 
-def test_answers_that_vary_for_the_same_input_are_not_blamed_on_the_change(toy_lab, tmp_path):
-    noisy = """
+NOISY = """
 import numpy as np
 
 def scale(values, factor):
-    out = values * factor + np.random.default_rng().normal(0, 1e-12, len(values))
-    values *= factor                  # would show in a second call, but no two answers are alike anyway
+    out = values * factor + np.random.default_rng().normal(0, {noise}, len(values))
+    values *= factor                  # shows in a second call
     return out
 """
-    result = grade(submission_from_source(tmp_path, "toy_scaling", noisy), ["lab98"])
+
+
+def test_answers_that_vary_for_the_same_input_are_not_blamed_on_the_change(toy_lab, tmp_path):
+    """Answers that differ from call to call (here by a millionth each call, as a random draw without a seed
+    would) say nothing of the change."""
+    drifting = """
+import itertools
+_calls = itertools.count(1)
+
+def scale(values, factor):
+    out = values * factor + 1e-6 * next(_calls)
+    values *= factor                  # shows in a second call
+    return out
+"""
+    result = grade(submission_from_source(tmp_path, "toy_scaling", drifting), ["lab98"])
     [doubles] = [c for c in result.exercises[0].checks if c.name == "scale([1, 2, 3], 2)"]
     assert doubles.passed, doubles.message
+
+
+def test_noise_in_the_last_digits_does_not_hide_a_change_in_place(toy_lab, tmp_path):
+    """The same answer but for its last digits is the same answer: noise of 1e-13 added to every answer does not
+    make the second call's 4x an answer of its own (hostile round of 2026-12-07)."""
+    result = grade(submission_from_source(tmp_path, "toy_scaling", NOISY.format(noise=1e-12)), ["lab98"])
+    [doubles] = [c for c in result.exercises[0].checks if c.name == "scale([1, 2, 3], 2)"]
+    assert doubles.score == 0 and doubles.mistake == "the caller's array is changed in place", doubles.message
 
 
 def test_what_a_change_in_place_did_is_told_from_the_values():
