@@ -203,8 +203,55 @@ def test_a_zero_stride_view_is_refused_for_its_size_before_it_is_copied(tmp_path
             outcome = box.call("m", function)
             assert (outcome.kind, outcome.message) == ("result_type", f"{function}() returned a float64 array of "
                                                        "shape (2300, 131072) (2.25 GiB), which cannot be sent back: "
-                                                       "it is more than the 256 MiB a result may be")
+                                                       "it is more than the 16 MiB a result may be")
             assert box.call("m", "fine").value == 1
+
+
+def test_what_a_call_may_answer_grows_with_what_it_is_given(tmp_path, level):
+    """A reply may hold 64 times the bytes of the call's arrays, 16 MiB whatever it is given, at most the limit:
+    a 3 x 3 question answered with 120 MiB, for each of a property's calls, made the grader hold gigabytes
+    (hostile round of 2026-12-07). The worker refuses such a reply itself and answers the next call."""
+    from autograder.sandbox.supervisor import ANSWER_FLOOR, ANSWER_RATIO, answer_cap
+
+    assert answer_cap(2**30, (3.0, 4.0), {}) == ANSWER_FLOOR
+    assert answer_cap(2**30, (np.zeros((1000, 1000)),), {}) == ANSWER_RATIO * 8 * 10**6
+    assert answer_cap(2**28, ([np.zeros((1000, 1000))] * 3,), {}) == 2**28
+    with sandbox_for(tmp_path, """
+        import numpy as np
+
+        def as_large_as(image, mib):
+            return np.zeros(int(mib * 2**20) // 8)
+        """, Limits(call_timeout=10.0)) as box:
+        small, image = np.zeros((4, 4)), np.zeros((256, 256))   # 128 bytes, 512 KiB: 16 MiB and 32 MiB allowed
+        assert box.call("m", "as_large_as", (small, 15)).ok
+        refused = box.call("m", "as_large_as", (small, 17))
+        assert (refused.kind, refused.message) == ("result_type", "as_large_as() returned a float64 array of shape "
+                                                   "(2228224,) (17 MiB), which cannot be sent back: it is more than "
+                                                   "the 16 MiB a result may be")
+        assert box.call("m", "as_large_as", (image, 31)).ok
+        assert box.call("m", "as_large_as", (image, 33)).kind == "result_type"
+        assert box.restarts == 0   # (refused by the worker, which stays)
+
+
+def test_a_worker_sending_more_than_its_call_may_answer_is_stopped_before_it_is_read(tmp_path):
+    """The cap is the grader's: a worker that sends a reply past it anyway (its code replaced by the
+    submission's) is stopped at the length, before any of it is read."""
+    with sandbox_for(tmp_path, """
+        import numpy as np
+        import sys
+
+        def lies():
+            worker = sys.modules["__main__"]
+            original = worker.send
+            worker.send = lambda fd, message, max_bytes, max_elements=None: original(fd, message, 2**30, max_elements)
+            return np.zeros(3 * 2**20)   # 24 MiB past a 16 MiB cap
+
+        def fine():
+            return 1
+        """, Limits(call_timeout=10.0)) as box:
+        outcome = box.call("m", "lies")
+        assert outcome.kind == "result_type" and "at most 16 MiB can" in outcome.message, outcome.message
+        assert box.call("m", "fine").value == 1
 
 
 # ================================================================ processes
@@ -634,3 +681,16 @@ def test_huge_and_odd_numbers_cross_as_the_numbers_checks_compute_with():
     assert value[:5] == [math.inf, -math.inf, float(2**70), 2**63 - 1, 0.5]
     assert value[5].dtype == np.float32 and value[5].dtype.isnative
     assert value[6] == {"?": "x?"}  # lone surrogates: valid JSON, not text a page or a file can hold
+
+
+def test_a_checks_kept_calls_hold_a_bounded_share_of_answers():
+    """A check keeps its last calls for naming: at most 64 MiB of their answers, the last call whatever its size."""
+    from autograder.engine.checks import _CALLS_BYTES, _within_bytes, answer_bytes
+
+    calls = [("f", (k,), {}, np.zeros(2**22)) for k in range(40)]   # 32 MiB each
+    _within_bytes(calls, _CALLS_BYTES)
+    assert [call[1] for call in calls] == [(38,), (39,)]
+    huge = [("f", (), {}, [np.zeros(2**24), {"H": np.zeros(3)}])]   # 128 MiB, alone: kept
+    _within_bytes(huge, _CALLS_BYTES)
+    assert len(huge) == 1 and answer_bytes(huge[0][3]) == 2**27 + 24
+    assert answer_bytes([(1.0, 2.0)] * 10**5) == 0   # numbers outside arrays: bounded by the transport

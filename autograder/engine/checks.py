@@ -132,11 +132,33 @@ def fingerprint(*values) -> str:
 
 
 _CALLS_KEPT = 32   # a property's hundreds of calls: its last ones hold the failing example
+_CALLS_BYTES = 64 * 2**20   # and at most this much of their answers, the last one whatever its size: the grader
+                            # holds what a check keeps while it runs (hostile round of 2026-12-07)
 _EXAMPLES_KEPT = 3   # a property's passing examples kept for running its check again
 
 # Hypothesis's engine runs one property at a time, whatever the lanes (runner.grade): the
 # examples it draws never depend on another lane's property.
 _ONE_ENGINE = threading.Lock()
+
+
+def _within_bytes(calls: list, largest: int) -> None:
+    """Drop the oldest of ``calls`` [(function, args, kwargs, answer)] until their answers' arrays hold at most
+    ``largest`` bytes (the last call is kept whatever its size)."""
+    sizes = [answer_bytes(call[3]) for call in calls]
+    while len(calls) > 1 and sum(sizes) > largest:
+        del calls[0], sizes[0]
+
+
+def answer_bytes(value, depth: int = 0) -> int:
+    """The bytes of the arrays in an answer (numbers outside arrays are few: the transport bounds them)."""
+    if isinstance(value, np.ndarray):
+        return value.nbytes
+    if depth < 4 and isinstance(value, dict):
+        value = list(value.values())
+    if depth < 4 and isinstance(value, (list, tuple)) and value \
+            and isinstance(value[0], (np.ndarray, list, tuple, dict)):
+        return sum(answer_bytes(item, depth + 1) for item in value)
+    return 0
 
 
 class Trial:
@@ -234,6 +256,7 @@ class Trial:
             if outcome.ok:
                 self.calls.append((function, args, kwargs, outcome.value))
                 del self.calls[:-_CALLS_KEPT]
+                _within_bytes(self.calls, _CALLS_BYTES)
                 if function not in self.whole_numbers and _whole_numbers(outcome.value) \
                         and _fractional((args, kwargs)):
                     self.whole_numbers.add(function)

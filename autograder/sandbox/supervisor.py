@@ -53,6 +53,12 @@ _WORKER_FILES = ("worker.py", "transport.py", "beginner.py")
 STACK_NAME = "stack.txt"   # worker.STACK_FILE, beside the output file
 STACK_MARGIN = 0.25        # s before the deadline the worker writes where a call still running is
 STACK_BYTES = 16_384       # read of it at most
+# What one call may send back grows with what it is given: ANSWER_RATIO times the bytes of its arrays, and
+# ANSWER_FLOOR whatever it is given (a pattern of n_bits x width from two numbers), within Limits.max_result_bytes.
+# The grader holds what comes back while it judges it: a reply of 120 MiB to a 3 x 3 question, kept for each of
+# a property's calls, would make the grader swell to gigabytes (hostile round of 2026-12-07).
+ANSWER_RATIO = 64
+ANSWER_FLOOR = 16 * 2**20
 _FRAME = re.compile(r'^\s*File "([^"\n]{1,400})", line (\d{1,7}) in ([A-Za-z_][A-Za-z0-9_<>]{0,80})\s*$')
 
 
@@ -81,6 +87,24 @@ def where_stopped(text: str, module_files: set[str]) -> str:
                      "by 0 before it?)")
         return said
     return ""
+
+def _array_bytes(value, depth: int = 0) -> int:
+    """The bytes of the arrays in ``value`` (arguments the grader made: arrays, numbers, lists and dicts of them)."""
+    if depth > 8:
+        return 0
+    if isinstance(value, (list, tuple)):
+        return sum(_array_bytes(item, depth + 1) for item in value)
+    if isinstance(value, dict):
+        return sum(_array_bytes(item, depth + 1) for item in value.values())
+    size = getattr(value, "nbytes", 0)   # (an array: NumPy is not imported here to start a worker)
+    return size if type(size) is int else 0
+
+
+def answer_cap(largest: int, *given) -> int:
+    """The most bytes a reply to a call given ``given`` (its arguments) may hold: :data:`ANSWER_RATIO` times their
+    arrays' bytes, at least :data:`ANSWER_FLOOR`, at most ``largest``."""
+    return int(min(largest, max(ANSWER_FLOOR, ANSWER_RATIO * sum(_array_bytes(g) for g in given))))
+
 
 FAILURE_KINDS = {
     "timeout", "crashed", "exception", "not_implemented", "missing_function",
@@ -758,7 +782,8 @@ class Sandbox:
             return self._over_budget(f"{function}()")
         request = {"op": "call", "module": module, "function": function,
                    "args": list(args), "kwargs": dict(kwargs or {}),
-                   "forbid": list(forbid), "cpu_seconds": timeout + 1.0}
+                   "forbid": list(forbid), "cpu_seconds": timeout + 1.0,
+                   "max_bytes": answer_cap(self.limits.max_result_bytes, args, kwargs)}
         outcome = self._billed(request, timeout, what=f"{function}()")
         if outcome.kind in ("timeout", "memory"):
             key = (module, function, outcome.kind)
@@ -766,7 +791,7 @@ class Sandbox:
         return outcome
 
     def call_variant(self, module: str, source: str, function: str, calls, *, timeout: float,
-                     forbid=(), trace: bool = False, fresh: bool = False) -> CallOutcome:
+                     forbid=(), trace: bool = False, fresh: bool = False, max_bytes: int | None = None) -> CallOutcome:
         """Call ``function`` of a variant of the student's ``module`` -- its defs in ``source`` (the
         grader's rewrite of the student's own code) executed over a copy of the module -- on each
         ``(args, kwargs)`` of ``calls``. The value is a list: each call's result or ``{"__error__":
@@ -775,16 +800,20 @@ class Sandbox:
         worker nothing. ``trace`` with ``source`` "" (the student's code as it is): the value is
         ``{"values": [...], "lines": [...]}``, with the lines of the module's file the calls ran.
         ``fresh`` (``source`` ""): the student's module file executed anew for these calls alone, as a
-        first call finds it (what earlier calls left in the module is not there)."""
+        first call finds it (what earlier calls left in the module is not there). ``max_bytes``: the most its
+        answers may hold together, where the caller knows what a right answer holds (within what the calls'
+        arguments allow, :func:`answer_cap`)."""
         imported = self.import_module(module)
         if not imported.ok:
             return imported
         timeout = min(timeout, self.remaining())
         if timeout <= 0:
             return self._over_budget(f"{function}() (a variant)")
-        request = {"op": "variant", "module": module, "source": source, "function": function,
-                   "calls": [[list(args), dict(kwargs)] for args, kwargs in calls],
-                   "forbid": list(forbid), "cpu_seconds": timeout + 1.0, "trace": bool(trace), "fresh": bool(fresh)}
+        calls = [[list(args), dict(kwargs)] for args, kwargs in calls]
+        request = {"op": "variant", "module": module, "source": source, "function": function, "calls": calls,
+                   "forbid": list(forbid), "cpu_seconds": timeout + 1.0, "trace": bool(trace), "fresh": bool(fresh),
+                   "max_bytes": min(self.limits.max_result_bytes, max_bytes or self.limits.max_result_bytes,
+                                    sum(answer_cap(self.limits.max_result_bytes, call) for call in calls) or ANSWER_FLOOR)}
         return self._request(request, timeout, f"{function}() (a variant)")
 
     def working_pids(self) -> list[tuple[int, float]]:
@@ -887,11 +916,12 @@ class Sandbox:
             self._write(LENGTH.pack(len(frame)) + frame, deadline)
             length, = LENGTH.unpack(self._read(LENGTH.size, deadline))
             replying = length
-            if length > self.limits.max_result_bytes:  # (the worker refuses it first: this one lied)
+            cap = request.get("max_bytes", self.limits.max_result_bytes)
+            if length > cap:  # (the worker refuses it first: this one lied)
                 return self._abandon(CallOutcome(
                     ok=False, kind="result_type", seconds=time.perf_counter() - start,
                     message=f"{what} returned {transport.size_words(length)}, which cannot be sent back: "
-                            f"at most {transport.size_words(self.limits.max_result_bytes)} can"))
+                            f"at most {transport.size_words(cap)} can"))
             head = self._read(min(length, transport.PREFIX.size), deadline)
             if len(head) == transport.PREFIX.size:  # refuse an oversized header before reading it
                 _, header_length = transport.PREFIX.unpack(head)
@@ -901,7 +931,7 @@ class Sandbox:
                     head += self._read(min(header_length, length - len(head)), deadline)
                     transport.check_elements(head[transport.PREFIX.size:], self.limits.max_result_elements)
             frame = head + self._read(length - len(head), deadline)
-            reply = transport.decode(frame, max_bytes=self.limits.max_result_bytes)
+            reply = transport.decode(frame, max_bytes=cap)
             seconds = time.perf_counter() - start  # measured here: the worker's word is not taken
             if self._pending_reply():
                 raise transport.TransportError("more than one reply to one call")

@@ -714,7 +714,11 @@ class Worker:
             reason = suspect_state()
             if reason:
                 response["suspect"] = reason
-            send(response_fd, response, self.max_result_bytes, self.max_result_elements)
+            # (a reply as large as the grader takes for this call: what it was given decides -- see
+            # supervisor.answer_cap; the grader holds to it whatever this process does)
+            asked = request.get("max_bytes")
+            largest = min(self.max_result_bytes, asked) if type(asked) is int and asked > 0 else self.max_result_bytes
+            send(response_fd, response, largest, self.max_result_elements)
             # Nothing of this call is held while the worker waits: the grader weighs what the
             # worker holds now (memory a call keeps would be the next call's missing).
             request = response = None

@@ -40,7 +40,7 @@ import numpy as np
 
 from ...loading.parsing import parse
 from ...loading.reading import MAX_SOURCE_BYTES
-from ..checks import Trial, Verdict, fingerprint
+from ..checks import Trial, Verdict, answer_bytes, fingerprint
 from ..hints import RANDOM_DRAWS, SIZE_ARGUMENTS
 from ..inherited import SHARED_FAILING
 from . import anchors, naming
@@ -3779,6 +3779,9 @@ class _Variants:
         self.channels: set = set()   # of keeping, the variants with the images in the other number of channels
         self.seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
+        # (what one variant's answer may hold: a right one holds the reference's, an image of floats where 8 bits
+        # are asked 8 times that; the grader holds every variant's answers while it compares them)
+        self.answer_bytes = 2**20 + 16 * max([answer_bytes(reference) for reference in references], default=0)
         self.projective = not any(naming.error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
                                   for answer, reference in zip(self.students, references))
         self.replayable = _replayable(trial)
@@ -3814,7 +3817,7 @@ class _Variants:
         timeout = max(VARIANT_TIMEOUT, 3 * self.seconds_per_call * len(indices))
         outcome = self.companion.call_variant(
             self.trial.lab.module, source, self.function, [every[i][1:] for i in indices], forbid=self.forbid,
-            timeout=max(0.05, min(timeout, self.clock.wall_left())))
+            timeout=max(0.05, min(timeout, self.clock.wall_left())), max_bytes=self.answer_bytes * len(indices))
         value = outcome.value if outcome.ok else None
         for said in outcome.modified if outcome.ok else ():   # "k:name": the k-th call changed its input
             number = said.partition(":")[0]
