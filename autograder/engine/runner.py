@@ -404,6 +404,7 @@ def _grade_exercise(sandbox, exercise, checks, pictures, on_check, submission=No
             out.checks.append(run_check(sandbox, check, pictures, modified, rules, painter, inputs, reading))
         if on_check:
             on_check(exercise, out.checks[-1])
+    _zero_constant(sandbox, exercise, out.checks)
     graded = [c for c in out.checks if c.max_score > 0]
     if graded and all(c.status == NOT_IMPLEMENTED for c in graded):
         out.message = "not implemented yet"
@@ -742,6 +743,28 @@ def _remember_check(check: Check, trial: Trial) -> None:
         _log_grader_error(check, exc)
 
 
+def _remember_answers(check: Check, trial: Trial) -> None:
+    """Keep what the check's calls answered, to tell a function whose answer does not depend on its input
+    (:mod:`autograder.engine.constant`). Never costs the verdict (logged)."""
+    from .constant import remember
+
+    try:
+        remember(trial)
+    except Exception as exc:  # noqa: BLE001 - the verdict stands without it
+        _log_grader_error(check, exc)
+
+
+def _zero_constant(sandbox, exercise: Exercise, results: list) -> None:
+    """The exercise's checks that called a function answering one same answer whatever it is given score 0
+    (:mod:`autograder.engine.constant`); a failure of that reading costs nothing (logged)."""
+    from .constant import zero_constant
+
+    try:
+        zero_constant(sandbox, exercise, results)
+    except Exception as exc:  # noqa: BLE001 - the verdicts stand without it
+        logging.getLogger("autograder").exception("telling constant answers in %s: %s", exercise.id, exc)
+
+
 def _told_if_inherited(verdict: Verdict, check: Check, trial: Trial) -> tuple[Verdict, bool]:
     """A failed verdict told as inherited from another of the student's functions when it is
     (:mod:`autograder.engine.inherited`), and whether it is. Never costs the verdict (logged)."""
@@ -1059,6 +1082,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         tb = ""
         _log_grader_error(check, exc)
     _remember_check(check, trial)
+    _remember_answers(check, trial)
     # a failure another of the student's functions causes is not this one's mistake, nor one an earlier
     # call's leftovers decided
     inherited = False

@@ -1,0 +1,118 @@
+"""A function that answers the same whatever it is given earns no points.
+
+Some checks compare a function's answers with each other: the same point alone and among many,
+whole numbers given as integers and as floats, a grey image answered in grey, a parameter's
+default against the API's value. A function that returns one constant computes nothing, yet it
+passes all of them. In the hostile round of 2026-12-07, ``return np.full(1, 0.5)`` in every
+function earned 43 of the 464 public points.
+
+While an exercise is graded, :func:`remember` keeps, for each function, the fingerprints of its
+answers to distinct inputs and the checks that called it. A function is constant when at least
+two distinct inputs got the same answer, bit for bit, and the reference's answers to those inputs
+differ. The reference is compared up to scale and sign, because the labs ask for every matrix and
+homogeneous vector only up to those. :func:`zero_constant` then sets to 0 the points of the
+exercise's checks that called such a function.
+
+Nothing is decided without the reference (a copy of the grader without ``reference_solutions/``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from .checks import fingerprint
+from .results import FAILED, CheckResult
+
+KEY = "answers seen"
+KEPT = 4               # distinct inputs (their arguments) kept per function for the reference's confirmation
+SECONDS = 10.0         # for the reference's answers to them
+MISTAKE = "the answer does not depend on the input"
+
+
+def remember(trial) -> None:
+    """Keep, for each function the trial called, its answers' fingerprints (distinct inputs only) and the
+    check, until two different answers show that it does depend on its input."""
+    shared = getattr(getattr(trial, "sandbox", None), "shared", None)
+    if shared is None:
+        return
+    for function, args, kwargs, value in trial.calls:
+        seen = shared.setdefault((KEY, trial.lab.module, function), {"inputs": {}, "answers": set(), "checks": set()})
+        seen["checks"].add(trial.check.name)
+        if len(seen["answers"]) > 1:
+            continue   # (its answers vary: nothing more to keep)
+        given = fingerprint(args, kwargs)
+        if given in seen["inputs"] or len(seen["inputs"]) >= KEPT:
+            continue
+        seen["answers"].add(fingerprint(value))
+        seen["inputs"][given] = (args, kwargs) if len(seen["answers"]) == 1 else None
+        if len(seen["answers"]) > 1:
+            seen["inputs"].clear()
+
+
+def zero_constant(sandbox, exercise, results: list[CheckResult]) -> None:
+    """Set to 0 the points of ``results`` (the exercise's checks) that called a function of the exercise
+    answering one same answer to inputs whose right answers differ (told once, in each such check)."""
+    shared = getattr(sandbox, "shared", {})
+    for function in exercise.signatures:
+        seen = shared.get((KEY, exercise.lab.module, function))
+        if not seen or len(seen["answers"]) != 1 or len(seen["inputs"]) < 2:
+            continue
+        if not _right_answers_differ(exercise.lab, function, list(seen["inputs"].values())):
+            continue
+        said = (f"{function}() gave one same answer to each of the {len(seen['inputs'])} different inputs it was "
+                "given, whose right answers differ: its answer does not depend on what it is given, so no check of "
+                "its answers can pass")
+        for k, result in enumerate(results):
+            if result.max_score > 0 and result.score > 0 and result.name in seen["checks"]:
+                results[k] = replace(result, score=0.0, status=FAILED, message=said, hint="", mistake=MISTAKE)
+
+
+def _right_answers_differ(lab, function: str, inputs: list) -> bool:
+    """Whether the reference answers ``inputs`` [(args, kwargs)] of ``function`` otherwise than all alike
+    (beyond a scale and a sign); False without a reference or its answers."""
+    from .mutants import naming
+    from .mutants.helper import HelperFailed
+
+    model = naming.model_for(lab)
+    if model is None:
+        return False
+    calls = [(function, tuple(args), dict(kwargs)) for args, kwargs in inputs]
+    try:
+        runner = naming.helper()
+        runner.prepare(model.source, model.module, calls, SECONDS)
+        answers = runner.run((), range(len(calls)), SECONDS)
+    except HelperFailed:
+        return False
+    finally:
+        naming.release_helper()
+    answers = [a for a in answers if naming.error_kind(a) is None]
+    return any(_differ(answers[0], other) for other in answers[1:])
+
+
+def _differ(a, b) -> bool:
+    """Whether two answers differ in structure, in shape, or in their numbers beyond a scale and a sign."""
+    if isinstance(a, (list, tuple)) or isinstance(b, (list, tuple)):
+        return not (isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)) and len(a) == len(b)) \
+            or any(_differ(x, y) for x, y in zip(a, b))
+    if isinstance(a, dict) or isinstance(b, dict):
+        return not (isinstance(a, dict) and isinstance(b, dict) and a.keys() == b.keys()) \
+            or any(_differ(a[key], b[key]) for key in a)
+    try:
+        x, y = np.asarray(a, np.float64), np.asarray(b, np.float64)
+    except (TypeError, ValueError):
+        return a != b
+    if x.shape != y.shape:
+        return True
+    return not np.allclose(_unit(x), _unit(y), rtol=1e-6, atol=1e-9, equal_nan=True)
+
+
+def _unit(x: np.ndarray) -> np.ndarray:
+    """``x`` at unit norm, its largest entry positive (its finite entries; as it is when all are 0)."""
+    finite = np.where(np.isfinite(x), x, 0.0)
+    norm = np.linalg.norm(finite)
+    if norm == 0:
+        return x
+    largest = finite.flat[np.argmax(np.abs(finite))]
+    return x / norm * np.sign(largest)
