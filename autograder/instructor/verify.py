@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Iterable
 
+from ..engine.constant import MISTAKE as CONSTANT_ANSWER
 from ..engine.ignored import MISTAKE as UNUSED_PARAMETER, UNUSED_VALUE
 from ..engine.labfolders import MISTAKES, REFERENCE, SKELETON, LabFolderError, lab_folder
 from ..engine.registry import Lab
@@ -262,15 +263,17 @@ def case_problems(result: GradingResult, case: Case) -> list[str]:
     if not any(all(w in c.message.lower() for w in words) for c in failed):
         problems.append(f"not named in its own words {list(case.fragments)}; the messages were: "
                         + " | ".join(c.message.splitlines()[0] for c in failed if c.message))
-    # The error model's names (``mutant:...``), its repairs of the student's code (``repair:...``) and an
-    # unused parameter's or value's (engine/ignored.py: read in the code, true of it) are told
-    # in their own generic words: they count as another mistake only when no check names the case in
-    # its own words (autograder verify --error-model measures the model's apart).
+    # The error model's names (``mutant:...``), its repairs of the student's code (``repair:...``), an
+    # unused parameter's or value's (engine/ignored.py: read in the code, true of it) and an answer that does
+    # not depend on the input (engine/constant.py: measured) are told in their own generic words: they count as
+    # another mistake only when no check names the case in its own words (autograder verify --error-model
+    # measures the model's apart).
     named_in_own_words = any(all(w in c.message.lower() for w in words) for c in failed)
     problems += [f"named as another mistake: {message.splitlines()[0]!r}"
                  for label, message in named_mistakes(result, case.exercise)
                  if not all(w in message.lower() for w in words)
-                 and not (named_in_own_words and (label.startswith(("mutant:", "repair:")) or label in (UNUSED_PARAMETER, UNUSED_VALUE)))]
+                 and not (named_in_own_words and (label.startswith(("mutant:", "repair:"))
+                                                   or label in (UNUSED_PARAMETER, UNUSED_VALUE, CONSTANT_ANSWER)))]
     if sum(e.score for e in exercises) >= sum(e.max_score for e in exercises):
         problems.append(f"loses no points in {case.exercise}")
     return problems
