@@ -622,7 +622,10 @@ class _batch_progress:
             self.task = self.bar.add_task("", total=summary.students, counts="")
             return
         now = time.monotonic()
-        self.since = {key: self.since.get(key, now) for key in summary.running}
+        # (in place: the bar's running column holds this dict, not the name)
+        running = {key: self.since.get(key, now) for key in summary.running}
+        self.since.clear()
+        self.since.update(running)
         self.bar.update(self.task, advance=1, counts=f"{summary.graded} finished, {len(summary.failed)} failed")
 
     def __exit__(self, *exc):

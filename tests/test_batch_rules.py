@@ -83,3 +83,26 @@ def test_the_progress_line_names_the_students_still_running():
     task_id = progress.add_task("x")
     text = column.render(progress._tasks[task_id]).plain
     assert text.startswith("running: bo 1:35, ada 0:03, cy 0:01") and text.endswith("+1")
+
+
+def test_the_batch_bar_shows_the_students_the_batch_reports_running():
+    """The bar's column reads the students the batch's last event said were running (a first-time user saw
+    "running" never appear: the column kept the empty dict it was made with -- audit of 2026-12-07)."""
+    import io
+    from types import SimpleNamespace
+
+    from rich.console import Console
+
+    from autograder.cli import _batch_progress
+
+    console = Console(file=io.StringIO(), force_terminal=True, width=200)
+    progress = _batch_progress(console)
+    update = progress.__enter__()
+    try:
+        update("start", None, SimpleNamespace(students=3))
+        update("graded", None, SimpleNamespace(running=["alice", "bo"], graded=1, failed=[]))
+        column = progress.bar.columns[-1]
+        text = column.render(progress.bar._tasks[progress.task]).plain
+    finally:
+        progress.__exit__(None, None, None)
+    assert text.startswith("running: alice 0:00, bo 0:00"), text
