@@ -426,6 +426,20 @@ class _progress:
 BATCH_LINES = 20   # lines of each kind the batch prints (a stray-filled upload lists thousands)
 
 
+def _out_among_submissions(submissions, out) -> str:
+    """Why ``out`` cannot hold a batch's results (``""``: it can): it is the submissions folder or inside it, where
+    the pages and sources written would be read back as the students' work by the next run."""
+    try:
+        given, results = Path(submissions).resolve(), Path(out).resolve()
+    except (OSError, RuntimeError):
+        return ""
+    if not given.is_dir() or (results != given and given not in results.parents):
+        return ""
+    return (f"--out {out} is {'the' if results == given else 'inside the'} folder of submissions {submissions}: the "
+            "results written there (pages, sources, the gradebook) would be read as students' work by the next run; "
+            f"give a folder outside it, e.g. --out {given.parent / (given.name + '-results')}")
+
+
 def run_batch(args) -> int:
     from .instructor.batch.task import grading_processes
 
@@ -448,6 +462,10 @@ def run_batch(args) -> int:
 
     console = Console()
     out = args.out
+    inside = _out_among_submissions(args.submissions, args.out)
+    if inside:
+        console.print(f"[red]error:[/red] {escape(inside)}", highlight=False)
+        return USAGE_ERROR
     try:
         course = CourseConfig.load(args.course) if args.course else CourseConfig()
         note = ignored_keys_note(course, "batch")

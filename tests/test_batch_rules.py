@@ -106,3 +106,17 @@ def test_the_batch_bar_shows_the_students_the_batch_reports_running():
     finally:
         progress.__exit__(None, None, None)
     assert text.startswith("running: alice 0:00, bo 0:00"), text
+
+
+def test_results_are_never_written_among_the_submissions(tmp_path, capsys):
+    """`--out` the class folder or inside it is refused before anything is graded: the pages and sources written
+    there would be read back as students' work by the next run (audit of 2026-12-07: a report's error message led a
+    first-time user to do just that)."""
+    from autograder import cli
+
+    (tmp_path / "class" / "alice").mkdir(parents=True)
+    for out in (tmp_path / "class", tmp_path / "class" / "results"):
+        assert cli.main(["batch", str(tmp_path / "class"), "--out", str(out)]) == 2
+        said = " ".join(capsys.readouterr().out.split())
+        assert "folder of submissions" in said and "class-results" in said, said
+    assert not (tmp_path / "class" / "results").exists()

@@ -79,7 +79,9 @@ def write_overview(results_dir, course_title: str | None = None) -> Path:
     """
     results_dir = Path(results_dir)
     if not (results_dir / GRADEBOOK).is_file():
-        raise NoGradebook(f"{results_dir} holds no {GRADEBOOK}: run autograder batch SUBMISSIONS --out {results_dir}")
+        raise NoGradebook(f"{results_dir} holds no {GRADEBOOK}: it is the folder a batch writes its results in "
+                          f"(autograder batch SUBMISSIONS --out RESULTS), not the students' work -- run the batch, "
+                          "then give its RESULTS folder")
     from ..batch.gradebook import Gradebook
     from ..batch.run import class_grades
 
