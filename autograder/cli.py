@@ -395,7 +395,22 @@ def lanes_for(selectors) -> int:
 def _several_students(path) -> str | None:
     from .instructor.batch.ingest import several_students
 
-    return several_students(path, sorted({lab.module for lab in discover().values()}))
+    modules = sorted({lab.module for lab in discover().values()})
+    if not (str(path).lower().endswith(".zip") and Path(path).is_file()):
+        return several_students(path, modules)
+    # (a class comes as a zip as often as a folder: an LMS's bulk download is one -- read as the grading would
+    # unpack it, its own refusals left to the grading)
+    import tempfile
+
+    from .loading.submission import SubmissionError, unzip_regular_files
+
+    with tempfile.TemporaryDirectory(prefix="autograder-class-zip-") as unpacked:
+        try:
+            unzip_regular_files(Path(path), Path(unpacked))
+        except SubmissionError:
+            return None
+        said = several_students(unpacked, modules)
+    return None if said is None else said.replace(unpacked, str(path))
 
 
 class _progress:

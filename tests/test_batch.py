@@ -364,6 +364,27 @@ def test_grade_refuses_a_folder_of_several_students(tmp_path, layout, refused):
         assert "autograder batch" in message
 
 
+@pytest.mark.parametrize("layout, refused", [
+    ({"a/lab07_transformations.py": "", "b/lab07_transformations.py": ""}, True),
+    ({"smithjohn_12_34_lab07_transformations.py": "", "doejane_LATE_13_35_lab07_transformations.py": ""}, True),
+    ({"lab07_transformations.py": "", "helpers.py": ""}, False),
+])
+def test_grade_refuses_a_class_handed_over_as_a_zip(tmp_path, layout, refused, capsys):
+    """An LMS's bulk download is a zip as often as a folder: `autograder grade class.zip` refuses it as it refuses
+    the folder (audit of 2026-12-07: it graded one student's file of the class)."""
+    import zipfile
+
+    archive = tmp_path / "class.zip"
+    with zipfile.ZipFile(archive, "w") as zf:
+        for name, content in layout.items():
+            zf.writestr(name, content or "def translation_matrix(tx, ty):\n    raise NotImplementedError\n")
+    code = main(["grade", str(archive), "lab07.ex1", "--no-html"])
+    said = " ".join(capsys.readouterr().out.split())
+    assert (code == 2) == refused, said
+    if refused:
+        assert "class.zip" in said and "autograder batch" in said, said
+
+
 def test_the_repository_folders_are_single_submissions():
     modules = [p.stem for p in REFERENCE.glob("lab*.py")]
     assert several_students(REFERENCE, modules) is None
