@@ -70,3 +70,25 @@ def test_a_rule_for_a_function_no_exercise_grades_fails_the_build(tmp_path):
     with pytest.raises(CourseConfigError, match="lab08.homography_ransack"):
         gradescope.build(tmp_path / "autograder.zip",
                          CourseConfig(forbid={"lab08.homography_ransack": ["cv2.findHomography"]}))
+
+
+@pytest.mark.parametrize("forbid, said", [
+    ({"lab08.homography_ransac2": ["cv2.findHomography"]}, "lab08.homography_ransac2 is not a function any exercise "
+                                                           "grades (did you mean lab08.homography_ransac?)"),
+    ({"lab08.homography_ransac": ["cv2.findHomographyy"]}, "cv2.findHomographyy is not a function of the cv2 "
+                                                           "installed (did you mean cv2.findHomography?)"),
+    ({"lab08.homography_ransac": ["np.linalg.svdd"]}, "np.linalg.svdd is not a function of the np installed"),
+])
+def test_a_forbid_naming_nothing_is_refused_by_every_command(tmp_path, forbid, said):
+    """A misspelt student or library function would forbid nothing, silently: the course file is refused where it
+    is read, by grade, batch and Gradescope alike (audit of 2026-12-07: only Gradescope's build checked, with a
+    traceback)."""
+    from autograder.instructor.course import CourseConfig, CourseConfigError
+
+    path = tmp_path / "course.json"
+    path.write_text(json.dumps({"forbid": forbid}))
+    with pytest.raises(CourseConfigError) as refused:
+        CourseConfig.load(path)
+    assert said in str(refused.value)
+    path.write_text(json.dumps({"forbid": {"lab08.homography_ransac": ["cv2.findHomography", "np.linalg.svd"]}}))
+    assert CourseConfig.load(path).forbid

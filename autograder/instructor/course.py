@@ -393,7 +393,40 @@ class CourseConfig:
         own = course.use_labs(path)
         if own and not course.select:   # a course of its own labs grades those, not every built-in lab too
             course = replace(course, select=own)
+        course.check_forbidden_names()
         return course
+
+    def check_forbidden_names(self) -> None:
+        """Every ``forbid`` key names a student function some exercise grades (its lab registered), and every
+        library function it lists exists in the library installed: a misspelt name would forbid nothing, silently.
+        Raises :class:`CourseConfigError` naming the first that does not."""
+        import difflib
+        import importlib
+
+        from ..engine.registry import discover
+
+        labs = discover()
+        for key, libraries in self.forbid.items():
+            lab, function = key.split(".", 1)
+            graded = sorted({name for e in labs[lab].exercises.values() for name in e.signatures}) if lab in labs else []
+            if function not in graded:
+                close = difflib.get_close_matches(function, graded, n=1)
+                raise CourseConfigError(f"forbid: {key} is not a function any exercise grades"
+                                        + (f" (did you mean {lab}.{close[0]}?)" if close else ""))
+            for name in libraries:
+                top, *path = name.split(".")
+                try:
+                    found = importlib.import_module({"np": "numpy"}.get(top, top))
+                except ImportError:
+                    continue   # (a library this machine lacks: the students' may have it)
+                for part in path:
+                    owner, found = found, getattr(found, part, None)
+                    if found is None:
+                        known = [n for n in dir(owner) if not n.startswith("_")]
+                        close = difflib.get_close_matches(part, known, n=1)
+                        raise CourseConfigError(f"forbid[{key!r}]: {name} is not a function of the {top} installed"
+                                                + (f" (did you mean {name.rsplit('.', 1)[0]}.{close[0]}?)" if close
+                                                   else ""))
 
     def use_labs(self, where="the course configuration") -> list[str]:
         """Register this course's lab folders (``labs``, forgetting another course's) and

@@ -437,7 +437,7 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
     lab_folders = course_lab_folders(config)
     config.use_labs()
     select(config.select)  # a course that names a missing lab fails now, not at the deadline
-    _check_forbidden_functions(config)
+    config.check_forbidden_names()
     left_out = (SKELETON, MISTAKES) if config.error_model else (REFERENCE, SKELETON, MISTAKES)
     shipped_labs = {f"{COURSE_LABS}/{f.lab.key}": shipped_lab_files(f.folder, left_out) for f in lab_folders}
     config = dataclasses.replace(config, labs=list(shipped_labs))   # where they are in the zip
@@ -458,18 +458,6 @@ def build(out, config: CourseConfig | None = None, root: Path = PROJECT_ROOT) ->
                 _add(zf, f"{shipped}/{path.relative_to(lab_folder.folder).as_posix()}", path.read_bytes())
     tmp.replace(out)
     return out
-
-
-def _check_forbidden_functions(config: CourseConfig) -> None:
-    """Every ``forbid`` key names a student function some exercise grades."""
-    from .course import CourseConfigError
-    from ..engine.registry import discover
-
-    labs = discover()
-    for key in config.forbid:
-        lab, function = key.split(".", 1)
-        if lab not in labs or not any(function in e.signatures for e in labs[lab].exercises.values()):
-            raise CourseConfigError(f"forbid: {key} is not a function any exercise grades")
 
 
 def _add(zf: zipfile.ZipFile, name: str, data, executable: bool = False):
