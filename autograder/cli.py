@@ -189,9 +189,11 @@ def _positive_seconds(text: str) -> float:
 
 
 def _report_path(path, default_name: str) -> Path:
-    """An output path; an existing folder means ``folder/default_name``."""
+    """An output path; an existing folder, or a path ending in a slash (a folder, made when written), means
+    ``folder/default_name``."""
+    folder = str(path).endswith(("/", os.sep))
     path = Path(path)
-    return path / default_name if path.is_dir() else path
+    return path / default_name if folder or path.is_dir() else path
 
 
 NO_SUBMISSION = ("autograder grade needs the submission to grade: a folder, .py, .zip or .ipynb.\n"

@@ -199,6 +199,15 @@ def test_report_paths_that_are_folders_get_the_default_names(tmp_path, capsys, m
     assert str(out / "results.json") in printed and str(out / "feedback.html") in printed
 
 
+def test_a_report_path_ending_in_a_slash_is_a_folder_made_when_missing(tmp_path, monkeypatch):
+    """`--json out/` writes out/results.json, as --figures and --report take a folder (audit of 2026-12-07: it wrote
+    a file named out)."""
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["grade", str(REFERENCE), "lab07.ex1", "--json", "out/", "--html", "pages/"]) == 0
+    assert json.loads((tmp_path / "out" / "results.json").read_text())["exercises"][0]["id"] == "lab07.ex1"
+    assert (tmp_path / "pages" / "feedback.html").is_file()
+
+
 def test_a_report_that_cannot_be_written_is_an_error_after_the_scores(tmp_path, capsys):
     blocker = tmp_path / "file"
     blocker.write_text("")
