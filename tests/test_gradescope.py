@@ -200,6 +200,22 @@ def test_results_are_in_the_course_points_like_every_other_grade():
     assert batch_grade.total == data["score"]
 
 
+def test_rescaled_points_add_up_to_the_courses_exactly():
+    """20 course points over a lab's 23 raw ones: each check's maximum to a ten-thousandth, the lab's together adding
+    up to 20 exactly (audit of 2026-12-07: course.md's example gave 121.9992 of 122 on Gradescope for full marks)."""
+    from autograder.engine.runner import grade
+
+    result = grade(REFERENCE, ["lab07.ex1", "lab07.ex2"], pictures="none", include_hidden=False)
+    raw = sum(e.max_score for e in result.exercises)
+    course = CourseConfig(select=["lab07.ex1", "lab07.ex2"], points={"lab07": 20})
+    scaled = result.in_points(course.point_factors([(e.id, e.max_score) for e in result.exercises]))
+    maxima = [c.max_score for e in scaled.exercises for c in e.checks]
+    assert raw == 23 and round(sum(maxima), 9) == 20 and all(round(m, 4) == m for m in maxima)
+    assert round(scaled.total, 9) == 20   # full marks are the course's points, not 19.9992
+    data = gradescope.results_json(result, course)
+    assert round(sum(t["max_score"] for t in data["tests"]), 9) == 20 == round(data["score"], 9)
+
+
 def test_gradescope_build_names_the_course_keys_it_does_not_apply(tmp_path, capsys):
     from autograder.cli import main
 

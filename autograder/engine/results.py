@@ -23,10 +23,10 @@ two gradings of the same submission compare equal once those are dropped.
 
 from __future__ import annotations
 
-import dataclasses
-
 import contextlib
+import dataclasses
 import json
+import math
 import os
 import tempfile
 from dataclasses import dataclass, field, fields
@@ -204,10 +204,29 @@ class GradingResult:
         exercise's factor (``CourseConfig.point_factors``; 1 for an exercise not named)."""
         if all(f == 1.0 for f in factors.values()):
             return self
-        exercises = [ExerciseResult(e.id, e.title, list(e.functions),
-                                    [dataclasses.replace(c, score=round(c.score * factors.get(e.id, 1.0), 4),
-                                                         max_score=round(c.max_score * factors.get(e.id, 1.0), 4))
-                                     for c in e.checks], e.message, list(e.rules))
+        # Each check's maximum to a ten-thousandth of a point, a lab's rounded together so they add up to its
+        # points exactly (largest remainders: 20 points over 65 raw ones are 20, not 19.9992); a full score is its
+        # check's maximum, a partial one its share of it.
+        scaled = {(e.id, k): c.max_score * factors.get(e.id, 1.0)
+                  for e in self.exercises for k, c in enumerate(e.checks) if factors.get(e.id, 1.0) != 1.0}
+        maxima: dict = {}
+        for lab in dict.fromkeys(key[0].split(".")[0] for key in scaled):
+            keys = [key for key in scaled if key[0].split(".")[0] == lab]
+            units = {key: math.floor(scaled[key] * 10_000 + 1e-6) for key in keys}
+            left = round(sum(scaled[key] for key in keys) * 10_000) - sum(units.values())
+            for key in sorted(keys, key=lambda key: units[key] - scaled[key] * 10_000)[:max(0, left)]:
+                units[key] += 1
+            maxima.update({key: units[key] / 10_000 for key in keys})
+
+        def rescaled(exercise, k, check):
+            if (exercise.id, k) not in maxima:
+                return check
+            most = maxima[(exercise.id, k)]
+            share = check.score / check.max_score if check.max_score else 0.0
+            return dataclasses.replace(check, max_score=most, score=most if share >= 1 else round(most * share, 4))
+
+        exercises = [ExerciseResult(e.id, e.title, list(e.functions), [rescaled(e, k, c) for k, c in enumerate(e.checks)],
+                                    e.message, list(e.rules))
                      for e in self.exercises]
         return dataclasses.replace(self, exercises=exercises)
 
