@@ -667,3 +667,24 @@ def test_the_grading_processes_fork_from_a_single_threaded_server():
     if "no server pid" in run.stderr:
         pytest.skip("this Python's multiprocessing does not say which process is the fork server")
     assert run.stdout.split() == ["1", "False"], run.stderr  # one thread; the caller's environment kept
+
+
+@pytest.mark.parametrize("name, module, error", [
+    ("lab07_transformations (1).py", "lab07_transformations (1).py", ""),   # plainly meant: graded with a note
+    ("Lab08_Homographies.py", "Lab08_Homographies.py", ""),
+    ("alice.py", "alice.py", "named after no lab module"),                 # several labs: which one is unknown
+])
+def test_a_lone_file_plainly_meant_as_a_module_is_graded_as_grade_would(tmp_path, name, module, error):
+    """A batch grades each submission as `autograder grade` would: a single file whose name was plainly meant as a
+    module is left for the grading to find, with its note (audit of 2026-12-07: the batch called it unreadable when
+    several labs were graded)."""
+    write(tmp_path / "class" / "xi" / name, "x = 1\n")
+    [entry] = read_class(tmp_path / "class", [MODULE, "lab08_homographies"], [MODULE, "lab08_homographies"])
+    assert (error in entry.error) if error else not entry.error, entry.error
+    assert list(entry.files) == [module]
+
+
+def test_a_lone_file_meant_for_another_lab_is_not_taken_for_the_one_graded(tmp_path):
+    write(tmp_path / "class" / "xi" / "Lab08_Homographies.py", "x = 1\n")
+    [entry] = read_class(tmp_path / "class", [MODULE], [MODULE, "lab08_homographies"])
+    assert list(entry.files) == ["Lab08_Homographies.py"]

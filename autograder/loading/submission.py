@@ -309,11 +309,11 @@ def _find_module(root: Path, module: str) -> Path | None:
 def _handed_in(root: Path, module: str) -> list[Path]:
     """Every file of ``root`` handed in as ``module``: named exactly (``.py`` or ``.ipynb``,
     at most three levels down, as :func:`_find_module` searches) or under a name plainly
-    meant (``Lab07_Transformations (1).ipynb``, :func:`_plain_name`)."""
+    meant (``Lab07_Transformations (1).ipynb``, :func:`plain_name`)."""
     exact = [p for suffix in SOURCE_SUFFIXES for p in root.rglob(module + suffix)
              if "__MACOSX" not in p.parts and not any(part.startswith(".") for part in p.relative_to(root).parts)
              and len(p.relative_to(root).parts) <= 3]
-    meant = [p for p in _source_files(root) if _plain_name(p.stem) == module and p not in exact]
+    meant = [p for p in _source_files(root) if plain_name(p.stem) == module and p not in exact]
     return exact + meant
 
 
@@ -370,7 +370,7 @@ def _lone_file(root: Path, modules: set[str]) -> Path | None:
     """The submission's one source file, when it holds exactly one (no archive beside it)
     and its name is not meant as any of ``modules`` (``lab7.py``, ``my_work.ipynb``)."""
     files = _source_files(root, suffixes=(".py", ".ipynb", ".zip"))
-    if len(files) != 1 or files[0].suffix.lower() == ".zip" or _plain_name(files[0].stem) in modules:
+    if len(files) != 1 or files[0].suffix.lower() == ".zip" or plain_name(files[0].stem) in modules:
         return None
     return files[0]
 
@@ -406,7 +406,7 @@ def notebook_to_source(text: str) -> str:
 _COPY_SUFFIX = re.compile(r"(\s*\(\d+\)|[\s_-]*copy(\s*\d+)?|[\s_-]+\d+)$", re.IGNORECASE)
 
 
-def _plain_name(stem: str) -> str:
+def plain_name(stem: str) -> str:
     """``Lab07_Transformations (1)`` -> ``lab07_transformations``: how a name was meant."""
     return re.sub(r"[\s-]+", "_", _COPY_SUFFIX.sub("", stem.strip())).lower()
 
@@ -444,7 +444,7 @@ def _find_misnamed(root: Path, module: str, out: Path, submission: Submission,
             broken.append(why_not.read_text(encoding="utf-8"))
             continue
         files += [p for p in _source_files(out / "_zips" / str(index)) if p not in files]
-    meant = [p for p in files if _plain_name(p.stem) == module]
+    meant = [p for p in files if plain_name(p.stem) == module]
     for suffix in (".py", ".ipynb"):
         matches = [p for p in meant if p.suffix.lower() == suffix]
         if len(matches) == 1:
@@ -462,9 +462,9 @@ def _find_misnamed(root: Path, module: str, out: Path, submission: Submission,
     if python_files:
         shown = [_shown(p, root, out) for p in python_files]
         problem += f" (found: {', '.join(shown[:12])}{', ...' if len(shown) > 12 else ''})"
-        close = difflib.get_close_matches(module, [_plain_name(p.stem) for p in python_files], n=1, cutoff=0.75)
+        close = difflib.get_close_matches(module, [plain_name(p.stem) for p in python_files], n=1, cutoff=0.75)
         if close:
-            [near] = [p for p in python_files if _plain_name(p.stem) == close[0]][:1]
+            [near] = [p for p in python_files if plain_name(p.stem) == close[0]][:1]
             problem += f"; if {near.name} is this lab, rename it {module}{near.suffix.lower()}"
     submission.problems[module] = problem
     return None

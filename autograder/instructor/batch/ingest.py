@@ -70,6 +70,7 @@ from ...loading.headings import ExerciseNames
 from ...loading.pdf_report import ReportReader
 from ...sandbox.supervisor import usable_cores
 from ...loading.report import Report, read_report
+from ...loading.submission import plain_name
 from ...loading.text import one_line, shown
 from ...sandbox.files import CAPS, SOURCE_SUFFIXES, limit_for
 from ..course import parse_time
@@ -652,8 +653,10 @@ def _iso(value) -> str | None:
 
 # ------------------------------------------------------------------ names and ids
 def _name_lone_file(entry: Entry, modules: list[str], every_module: set[str]) -> None:
-    """A single source file named after no module is the module, when one lab is graded."""
-    names = {PurePosixPath(n).stem for n in entry.files}
+    """A single source file named after no module is the module, when one lab is graded. One whose name was
+    plainly meant as a module (``Lab07_Transformations.py``, ``lab07_transformations (1).py``) is left as it is: the
+    grading finds it under that name, with a note, as ``autograder grade`` does."""
+    names = {plain_name(PurePosixPath(n).stem) for n in entry.files}
     if len(entry.files) != 1 or names & every_module or len(modules) != 1:
         if not names & every_module and len(entry.files) == 1 and len(modules) > 1:
             entry.error = (f"one file, {next(iter(entry.files))}, named after no lab module: "
