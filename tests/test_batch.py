@@ -599,6 +599,7 @@ def test_batch_refuses_a_class_where_student_code_cannot_be_confined(tmp_path, m
         level = "process-group"
 
     monkeypatch.setattr(confine, "detect", lambda: Unconfining())
+    monkeypatch.setattr(confine, "shortfall", lambda confinement: "")   # (no namespaces here: nothing stronger works)
     students = tmp_path / "class"
     (students / "alice").mkdir(parents=True)
     shutil.copy(SKELETON / "lab07_transformations.py", students / "alice")
@@ -611,6 +612,23 @@ def test_batch_refuses_a_class_where_student_code_cannot_be_confined(tmp_path, m
         run_batch(tmp_path / "not-read", tmp_path / "results", course=CourseConfig(select=["lab07.ex1"]))
     assert main(["batch", str(students), "--out", str(tmp_path / "results")]) == 2
     assert "cannot confine student code" in capsys.readouterr().out
+
+
+def test_a_batch_forced_to_the_weakest_level_is_not_told_the_machine_cannot_confine(tmp_path, monkeypatch, capsys):
+    """AUTOGRADER_CONFINEMENT=process-group where namespaces work: the refusal says what forced the level, as
+    grade.py does, not that the machine cannot confine (audit of 2026-12-07)."""
+    from autograder.sandbox import confine
+
+    monkeypatch.delenv("AUTOGRADER_CONFINEMENT", raising=False)
+    if confine.strongest_candidate().level == "process-group":
+        pytest.skip("no namespaced level on this machine")
+    monkeypatch.setenv("AUTOGRADER_CONFINEMENT", "process-group")
+    students = tmp_path / "class"
+    (students / "alice").mkdir(parents=True)
+    shutil.copy(SKELETON / "lab07_transformations.py", students / "alice")
+    assert main(["batch", str(students), "--out", str(tmp_path / "results")]) == 2
+    said = " ".join(capsys.readouterr().out.split())
+    assert "AUTOGRADER_CONFINEMENT=process-group forces it" in said and "cannot confine" not in said, said
 
 
 def test_reports_and_pictures_beside_the_code_are_never_read_and_links_never_followed(tmp_path):

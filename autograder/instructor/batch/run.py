@@ -54,13 +54,17 @@ class Unconfined(IngestError):
 
 
 def _refuse_unconfined(confinement: confine.Confinement) -> None:
+    weaker = confine.shortfall(confinement)  # e.g. AUTOGRADER_CONFINEMENT=namespaces where +user works
+    if confinement.level == "process-group" and weaker:   # (forced or asked for: the machine can do better)
+        raise Unconfined(f"{weaker}, so each submission could read the other students' work and your files, and "
+                         "print them into its feedback: grade the class at the strongest level this machine allows, "
+                         "or pass --allow-unconfined to accept that.")
     if confinement.level == "process-group":
         raise Unconfined(
             "this machine cannot confine student code (confinement level 'process-group': no Linux "
             "namespaces), so each submission could read the other students' work and your files, and "
             "print them into its feedback. Grade the class on Linux as root or with unprivileged user "
             "namespaces (see docs/security.md), or pass --allow-unconfined to accept that.")
-    weaker = confine.shortfall(confinement)  # e.g. AUTOGRADER_CONFINEMENT=namespaces where +user works
     if weaker:
         raise Unconfined(f"{weaker}: grade the class at the strongest level this machine allows, "
                          "or pass --allow-unconfined to accept that.")
