@@ -145,3 +145,29 @@ def test_grade_applies_the_course_time_limits_and_timeout_overrides_them(tmp_pat
     limited = first_failure()
     assert limited is not None and limited["failure"] == "timeout", limited
     assert first_failure("--timeout", "10") is None
+
+
+def test_a_page_of_many_pictures_keeps_within_its_budget_by_shrinking_the_passed_checks_ones():
+    """Pictures that only passed checks show (folded away) are encoded at half their size, largest first, once the
+    page's pictures pass PictureSheet.PICTURES_BUDGET; a failed check's pictures keep theirs (the reference's page
+    was 2.67 MB against DESIGN's 2 MB -- audit of 2026-12-07)."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from autograder.engine import pictures
+
+    rng = np.random.default_rng(0)
+    noisy = lambda: rng.integers(0, 256, (360, 480, 3), dtype=np.uint8)   # noqa: E731 - JPEG of ~100 KB each
+    artifact = lambda: SimpleNamespace(kind="images", caption="", items=[pictures.picture_item("yours", noisy())])  # noqa: E731
+    sheet = html.PictureSheet()
+    failing = artifact()
+    sheet.figure(failing, passed=False)
+    kept = failing.items[0]["data"]
+    for _ in range(30):
+        sheet.figure(artifact(), passed=True)
+    before = sum(len(e["data"]) for e in sheet.entries.values())
+    assert before > sheet.PICTURES_BUDGET
+    entries = sheet.encoded()
+    assert sum(len(e["data"]) for e in entries) <= sheet.PICTURES_BUDGET
+    assert entries[0]["data"] == kept and all(e["width"] == 480 for e in entries)   # (drawn in the same box)

@@ -80,10 +80,15 @@ class PictureSheet:
     WIDE_FIGURE = 1.8    # a single picture this much wider than tall is a composite (a pair
     FIGURE_WIDTH = 900   # side by side): drawn as wide as the page allows, so it can be read
     MAX_ENLARGEMENT = 3.0
+    # The page's pictures together (base64 characters): past it, the pictures only passed checks show -- folded
+    # away under "pictures" -- are encoded at half their size, largest first, so a complete submission's page stays
+    # within 2 MB (DESIGN's budget) however many checks draw; a failed check's pictures keep their size.
+    PICTURES_BUDGET = 1_500_000
 
     def __init__(self, prefix: str = "pic"):
         self.prefix = prefix
         self.entries: dict[str, dict] = {}
+        self._needed: set[str] = set()   # the entries a check that did not pass shows
 
     def _entry(self, item: dict) -> dict:
         key = item.get("data") or item["png"]
@@ -96,9 +101,12 @@ class PictureSheet:
                                  "width": width, "height": height}
         return self.entries[key]
 
-    def figure(self, artifact) -> dict:
+    def figure(self, artifact, passed: bool = False) -> dict:
+        """One artifact laid out (``passed``: of a check that passed, whose pictures may be made smaller)."""
         items = [dict(item, entry=self._entry(item)) for item in artifact.items
                  if item.get("data") or item.get("png")]
+        if not passed:
+            self._needed.update(item["entry"]["id"] for item in items)
         for item in items:  # results written before sizes were recorded: the picture's own
             item.setdefault("width", item["entry"]["width"])
             item.setdefault("height", item["entry"]["height"])
@@ -112,6 +120,22 @@ class PictureSheet:
                   "size": f"{item['width']} × {item['height']}",
                   "heat": item["label"] == "difference"} for item in items]
         return {"pictures": drawn, "caption": _figure_caption(artifact, items)}
+
+
+    def encoded(self) -> list[dict]:
+        """Every entry as the page embeds it, within :data:`PICTURES_BUDGET` where the passed checks' pictures
+        allow (each keeps its drawn size: a smaller bitmap fills the same box)."""
+        entries = list(self.entries.values())
+        total = sum(len(e["data"]) for e in entries)
+        for entry in sorted((e for e in entries if e["id"] not in self._needed), key=lambda e: -len(e["data"])):
+            if total <= self.PICTURES_BUDGET:
+                break
+            mime, data, _, _ = pictures.compact_encoding(entry["data"], max(1, entry["width"] // 2),
+                                                         max(1, entry["height"] // 2))
+            if len(data) < len(entry["data"]):
+                total -= len(entry["data"]) - len(data)
+                entry["mime"], entry["data"] = mime, data
+        return entries
 
 
 def _figure_caption(artifact, items) -> str:
