@@ -178,6 +178,19 @@ def test_ipython_syntax_is_commented_out_and_python_cell_magics_keep_their_code(
                                     "    pass  # %time y = i", "    pass  # !echo hi"]
 
 
+def test_ipython_syntax_commented_out_is_named_in_the_note_as_written():
+    """`!pip install seaborn` installs nothing where grading runs: the note names each magic left out as the student
+    wrote it, a non-Python cell once by its first line, a Python cell magic by its own line (its code is kept) -- the
+    guide said so, the note did not (audit of 2026-12-07)."""
+    converted = convert(notebook("%matplotlib inline\n!pip install seaborn\nimport numpy as np",
+                                 "%%bash\nls -la", "%%time\nW = 640"))
+    lines = converted.left_out_lines()   # (cell 1 is the notebook's heading)
+    assert "cell 2 `%matplotlib inline` (IPython syntax: commented out)" in lines
+    assert "cell 2 `!pip install seaborn` (IPython syntax: commented out)" in lines
+    assert "cell 3 `%%bash` (IPython syntax: the whole cell is commented out)" in lines
+    assert "cell 4 `%%time` (IPython syntax: commented out)" in lines and not any("W = 640" in line for line in lines)
+
+
 def test_a_line_holding_kept_and_left_out_statements_keeps_the_kept_ones():
     converted = convert(notebook("import numpy as np", "img = np.load('x.npy'); K = np.eye(3); print(K)"))
     namespace = module_namespace(converted)

@@ -274,10 +274,27 @@ def convert(text: str, name: str = "notebook", definitions_only: bool = True,
                                       + (f" (+{len(dropped) - 1} lines)" if len(dropped) > 1 else ""))
         lines.append("")
         guarded.append("")
-    converted.omissions = selection.omissions
+    converted.omissions = selection.omissions + _magics_left_out(raw)
     converted.source = "\n".join(lines) + "\n"
     converted.guarded_source = "\n".join(guarded) + "\n"
     return converted
+
+
+def _magics_left_out(cells: list[tuple[int, list[str], str]]) -> list[Omission]:
+    """The IPython syntax commented out of the cells read (not those tagged skip-grading), as the student wrote it:
+    a line magic or shell command each (``!pip install seaborn`` installs nothing where grading runs), a cell magic
+    that makes its cell other than Python once, by its first line."""
+    left_out = []
+    for number, cell_lines, mode in cells:
+        if mode == "skip":
+            continue
+        first = next(((k, line.strip()) for k, line in enumerate(cell_lines) if line.strip()), None)
+        if first and first[1].startswith("%%") and (first[1][2:].split() or [""])[0] not in _PYTHON_CELL_MAGICS:
+            left_out.append(Omission(number, first[0] + 1, first[1], "IPython syntax: the whole cell is commented out"))
+            continue
+        left_out += [Omission(number, k + 1, line.strip(), "IPython syntax: commented out")
+                     for k, line in enumerate(cell_lines) if is_ipython_line(line)][:20]
+    return left_out
 
 
 def _beyond_parsing(cells: list[tuple[int, list[str], str]]) -> str:
