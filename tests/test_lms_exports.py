@@ -137,3 +137,13 @@ def test_spreadsheet_safe_leaves_numbers_and_text_alone():
     buffer = io.StringIO()
     csv.writer(buffer).writerow([exports.spreadsheet_safe("=1+1")])
     assert buffer.getvalue().startswith("'=1+1")
+
+
+def test_a_class_of_folders_matches_canvas_s_own_export_by_login(tmp_path):
+    """Folders named after the students' logins (alice/, bkim/) match Canvas's gradebook export as it is: its SIS
+    Login ID, or SIS User ID, is the folder's name (audit of 2026-12-07: every student was "not on the roster")."""
+    rows = roster(tmp_path)
+    folders = [student("bkim", "bkim", source="folder"), student("s2", "s2", 4.0, source="folder")]
+    matched, unmatched, absent = exports.match_roster(folders, list(rows))
+    assert matched["bkim"]["name"] == "Kim, Bo" and matched["s2"]["name"] == "Lee, Ann"
+    assert not unmatched and [row["name"] for row in absent] == ["Nobody, Ned"]

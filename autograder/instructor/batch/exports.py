@@ -50,7 +50,8 @@ id), ``Student``/``Name``/``Full name``, ``ID`` (Canvas user id), ``SIS User ID`
 ``SIS Login ID``, ``Section``, ``Identifier`` (Moodle ``Participant N``),
 ``Email``/``Email address`` -- Canvas's own gradebook export works as it is.
 A student matches the first row agreeing on the derived id, Canvas id, SIS user
-id, e-mail or login, Moodle participant, then the name.
+id, e-mail or login, Moodle participant, then the name; a class of one folder per
+student matches its folders' names with the logins or SIS user ids.
 """
 
 from __future__ import annotations
@@ -255,6 +256,13 @@ def _roster_identities(row: dict) -> set[str]:
     for key in ("email", "login"):
         if row.get(key):
             ids.add(f"email:{row[key].lower()}")
+    # (a class handed in as a folder per student: its ids are the folders' names, which a roster knows as the login
+    # or the SIS user id -- Canvas's gradebook export, as it is)
+    from .ingest import slug
+
+    for key in ("login", "sid"):
+        if row.get(key):
+            ids.add(f"student_id:{slug(row[key])}")
     if row.get("identifier"):
         ids.add("moodle:" + re.sub(r"\D", "", row["identifier"]))
     return ids
