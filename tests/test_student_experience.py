@@ -423,3 +423,14 @@ def translation_matrix(tx, ty):
     own = [line for line in lines if line.startswith("called with")]   # not indented: the failing example's
     assert len(own) == 1 and float(own[0].split()[-1]) > 500
     assert sum(line.startswith("    called with") for line in lines) > 1
+
+
+def test_public_only_on_the_instructors_copy_says_the_hidden_checks_were_left_out(monkeypatch):
+    """The instructor's copy holds the hidden checks: --public-only leaves them out, it does not lack them (audit of
+    2026-12-07: it told the instructor "your instructor runs them"); a student's copy has none to run."""
+    from autograder.engine import registry
+
+    result = grade(REFERENCE, ["lab07.ex1"], pictures="none", include_hidden=False)
+    assert "Hidden checks were not run (--public-only)." in " ".join(terminal_text(result).split())
+    monkeypatch.setattr(registry, "hidden_checks_installed", lambda: False)
+    assert "Hidden checks are not part of this copy" in " ".join(terminal_text(result).split())

@@ -64,7 +64,11 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
     if printed:
         console.print(Text(printed, style="magenta"))
     if not result.hidden_included:
-        console.print("[dim]Hidden checks are not part of this copy; your instructor runs them.[/dim]")
+        from ..engine.registry import hidden_checks_installed
+
+        # (the instructor's copy, with --public-only: the hidden checks are there, and were left out)
+        console.print("[dim]Hidden checks were not run (--public-only).[/dim]" if hidden_checks_installed() else
+                      "[dim]Hidden checks are not part of this copy; your instructor runs them.[/dim]")
     if result.hidden_points_withheld:
         console.print("[dim]Hidden checks show only whether they passed; their points are not in these "
                       "scores until your instructor releases them.[/dim]")
