@@ -35,6 +35,17 @@ def test_the_page_keeps_its_scores_for_the_next_run(tmp_path):
     assert since(None, result_with({"lab07.ex1": 1.0})) == []                 # a first run
 
 
+def test_another_submissions_page_in_the_folder_is_not_a_previous_run(tmp_path):
+    """An instructor grading student after student in one folder: carla's page is no previous run of alice's
+    (audit of 2026-12-07: "since your previous run: lab07.ex1: 0 -> 10")."""
+    page = tmp_path / "feedback.html"
+    html.write(result_with({"lab07.ex1": 0.0}), page)
+    alice = result_with({"lab07.ex1": 10.0})
+    assert since(previous_scores(page), alice) == ["lab07.ex1: 0 -> 10"]
+    alice.submission = "alice"
+    assert since(previous_scores(page), alice) == []
+
+
 @pytest.mark.parametrize("content", ["", "<html>not ours</html>", '<script type="application/json" '
                                      'id="autograder-scores">{"exercises": "x"}</script>'])
 def test_a_page_without_scores_is_a_first_run(tmp_path, content):
@@ -48,7 +59,8 @@ def test_a_score_cannot_end_the_data_block(tmp_path):
     page = tmp_path / "feedback.html"
     html.write(hostile, page)
     assert "</script><b>x" not in page.read_text() and "x<!--" not in page.read_text().split("autograder-scores")[1]
-    assert previous_scores(page) == {"exercises": {"lab07.ex1</script><b>x<!--": [0.0, 0.0]}}   # read back whole
+    assert previous_scores(page) == {"exercises": {"lab07.ex1</script><b>x<!--": [0.0, 0.0]},   # read back whole
+                                     "submission": "s"}
 
 
 @pytest.mark.slow

@@ -160,7 +160,7 @@ SCORES_ID = "autograder-scores"
 def scores_script(result: GradingResult) -> Markup:
     """The page's scores as data for the next run's comparison (:mod:`autograder.student.progress`):
     a JSON block, never executed; every ``<`` escaped, so no text in it can end the script early."""
-    scores = {"total": result.total, "max_total": result.max_total,
+    scores = {"total": result.total, "max_total": result.max_total, "submission": result.submission,
               "exercises": {e.id: [e.score, e.max_score] for e in result.exercises}}
     text = json.dumps(scores, sort_keys=True).replace("<", "\\u003c")   # no "</script>", no "<!--"
     return Markup(f'<script type="application/json" id="{SCORES_ID}">{text}</script>')

@@ -6,7 +6,8 @@ a ``--json`` results file carries them too.
 Before a run overwrites either, the grader reads the scores the previous run left there
 and tells what moved: ``lab07.ex2: 0 -> 12`` on the terminal and at the top of the new
 page. Only exercises graded both times are compared, so ``python grade.py lab07.ex2``
-after a whole run speaks of lab07.ex2 alone.
+after a whole run speaks of lab07.ex2 alone; and only runs of the same submission (by its name):
+``autograder grade class/alice`` after ``class/carla`` in one folder compares nothing.
 """
 
 from __future__ import annotations
@@ -59,7 +60,7 @@ def _from_page(text: str) -> dict | None:
 def _from_results(text: str) -> dict | None:
     try:
         data = json.loads(text)
-        return _valid({"total": data["total"], "max_total": data["max_total"],
+        return _valid({"total": data["total"], "max_total": data["max_total"], "submission": data.get("submission"),
                        "exercises": {e["id"]: [e["score"], e["max_score"]] for e in data["exercises"]}})
     except (ValueError, KeyError, TypeError):
         return None
@@ -71,7 +72,8 @@ def _valid(scores) -> dict | None:
         return None
     kept = {key: value for key, value in exercises.items() if isinstance(key, str) and isinstance(value, list)
             and len(value) == 2 and all(isinstance(v, (int, float)) for v in value)}
-    return {"exercises": kept}
+    submission = scores.get("submission")
+    return {"exercises": kept, "submission": submission if isinstance(submission, str) else None}
 
 
 def since(previous: dict | None, result: GradingResult) -> list[str]:
@@ -79,6 +81,8 @@ def since(previous: dict | None, result: GradingResult) -> list[str]:
     (one whose points are now counted otherwise, e.g. a hidden check released, is told with its maximum)."""
     if not previous:
         return []
+    if previous.get("submission") not in (None, result.submission):
+        return []   # (another submission's page in this folder: an instructor grading student after student)
     moved = []
     for exercise in result.exercises:
         before = previous["exercises"].get(exercise.id)
