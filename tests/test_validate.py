@@ -9,6 +9,8 @@ import re
 import subprocess
 import sys
 
+import pytest
+
 from autograder.student import selfcheck
 from autograder.student.validate import NOTE, PROBLEM, validate
 from conftest import REFERENCE, ROOT, SKELETON, mutant, submission_from_source
@@ -163,3 +165,13 @@ def test_a_lone_file_with_any_name_is_graded_as_the_one_lab_selected(tmp_path):
                                      cwd=tmp_path)
     assert "0 / 10" in named_after_another.stdout  # never taken for another lab's module
     assert PROBLEM in [f.level for f in validate(lone, ["lab07.ex1"]).findings]  # validate asks for the rename
+
+
+@pytest.mark.parametrize("name", ["Lab07_Transformations.py", "lab07_transformations (1).py"])
+def test_a_name_plainly_meant_is_a_note_not_a_problem(tmp_path, name):
+    """A file whose name was plainly meant as the module is graded whatever else is selected: validate notes the
+    rename, it does not call the file a problem (audit of 2026-12-07: "graded only when found alone" of a file that
+    was found alone and graded)."""
+    (tmp_path / name).write_text(REFERENCE_SOURCE)
+    findings = [f for f in validate(tmp_path, ["lab07.ex1"]).findings if "is graded as" in f.text]
+    assert [f.level for f in findings] == [NOTE] and "to be sure" in findings[0].text

@@ -33,7 +33,7 @@ from ..engine.registry import Exercise, discover, select
 from ..loading.definitions import CellCode, analyse
 from ..loading.notebooks import point_into_notebook
 from ..loading.parsing import parse
-from ..loading.submission import load_submission
+from ..loading.submission import load_submission, plain_name
 from ..loading.text import one_line
 from ..sandbox.supervisor import Limits
 
@@ -119,9 +119,14 @@ def validate(path, selectors=(), limits: Limits | None = None) -> Validation:
                 report.add(PROBLEM, subject, submission.problems[module])
                 continue
             if module in submission.renamed:
-                report.add(PROBLEM, subject, f"{submission.renamed[module]} is graded as {module}.py only "
-                                             f"when found alone or under a name plainly meant; rename it {module}"
-                                             f"{Path(submission.renamed[module]).suffix}")
+                renamed = submission.renamed[module]
+                suffix = Path(renamed).suffix
+                if plain_name(Path(renamed).stem) == module:   # (graded whatever else is selected: a note)
+                    report.add(NOTE, subject, f"{renamed} is graded as {module}.py, the name the grader looks for; "
+                                              f"rename it {module}{suffix} to be sure")
+                else:   # (a lone file of any name: graded only while this lab alone is selected)
+                    report.add(PROBLEM, subject, f"{renamed} is graded as {module}.py only while it is the only file "
+                                                 f"and this lab the only one graded; rename it {module}{suffix}")
             readable.append(module)
             if module in submission.notebooks:
                 source = submission.notebooks[module][1].source  # as written: no guards
