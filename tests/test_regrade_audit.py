@@ -108,3 +108,13 @@ def test_a_change_without_a_regrade_says_what_moved_it(old, new, why, part):
     base = {"content": "c", "lock": "l", "status": "graded"}
     [change] = compare({"ada": {**base, **old, "total": 10.0}}, {"ada": {**base, **new, "total": 13.0}})
     assert (change.why, change.parts) == (why, [part])
+
+
+def test_a_roster_student_with_nothing_handed_in_is_no_changed_grade():
+    """A roster row with no submission has no grade before or after: not "eve: - -> - (first grading)" (audit of
+    2026-12-07); a first grading that gives one is a change."""
+    from autograder.instructor.batch.changes import compare
+
+    assert compare({}, {"eve": {"name": "Eve", "total": None}}) == []
+    [change] = compare({}, {"ada": {"name": "Ada", "total": 10.0}})
+    assert change.why == "first grading"

@@ -77,6 +77,8 @@ def compare(before: dict[str, dict], after: dict[str, dict]) -> list[Change]:
             continue
         if old is not None and _same(old.get("total"), new.get("total")):
             continue
+        if old is None and new.get("total") is None:   # (a roster's student with nothing handed in: no grade yet)
+            continue
         changed.append(Change(student_id, new.get("name", ""), (old or {}).get("total"), new.get("total"),
                               _why(old, new), _parts(old or {}, new)))
     return changed
