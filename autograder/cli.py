@@ -544,8 +544,12 @@ def run_batch(args) -> int:
                 write_overview(args.out)
         except StorageError as exc:
             return _storage_failed(exc)
-    console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in summary.files if p)
-                  + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite", highlight=False, markup=False)
+    results = Path(args.out).resolve()
+    inside = [p for p in summary.files if p and results in Path(p).resolve().parents]
+    elsewhere = [p for p in summary.files if p and p not in inside]   # (the course's pooled late-days ledger)
+    console.print(f"wrote {args.out}/ : " + ", ".join(p.name for p in inside)
+                  + ", <student>/feedback.html, <student>/results.json, gradebook.sqlite"
+                  + "".join(f"; and {p}" for p in elsewhere), highlight=False, markup=False)
     return 0
 
 

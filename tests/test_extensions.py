@@ -169,3 +169,24 @@ def test_the_class_overview_tells_each_students_extension_excused_work_and_days_
     page = overview_html(list(records.values()))
     assert '<span class="rules">extension +2 days</span>' in page and '<span class="rules">excused</span>' in page
     assert '<span class="rules">late days: 1 used · late 2 days, -1</span>' in page
+
+
+def test_the_batch_says_where_it_wrote_the_pooled_ledger(tmp_path, capsys):
+    """The term's late-days ledger lies beside the course file, not among the results: the batch's last line names it
+    where it is (audit of 2026-12-07: it was listed as a file of the results folder)."""
+    import json as _json
+    import shutil as _shutil
+
+    from autograder.cli import main
+    from conftest import REFERENCE
+
+    (tmp_path / "class" / "alice").mkdir(parents=True)
+    _shutil.copy(REFERENCE / "lab07_transformations.py", tmp_path / "class" / "alice")
+    (tmp_path / "course").mkdir()
+    course = tmp_path / "course" / "c.json"
+    course.write_text(_json.dumps({"select": ["lab07.ex1"], "late_penalty": {"per_day": 10, "due": "2026-12-01T00:00:00+00:00"},
+                                   "late_days": {"tokens": 3, "ledger": "late_days.json"}}))
+    assert main(["batch", str(tmp_path / "class"), "--out", str(tmp_path / "out"), "--course", str(course),
+                 "--workers", "1", "--pictures", "none"]) == 0
+    said = "".join(capsys.readouterr().out.split())   # (the terminal wraps a long path anywhere)
+    assert f";and{tmp_path / 'course' / 'late_days.json'}" in said, said
