@@ -229,6 +229,35 @@ def test_a_changed_submission_alone_is_graded_again(generated, tmp_path):
     assert by_id["skeleton"]["result"]["total"] == FULL
 
 
+def test_an_interrupted_regrade_resumes_where_it_stopped(tmp_path, monkeypatch):
+    """Ctrl-C half way through a --regrade: the same command again grades only what the regrade had left, and so
+    does a plain run (audit of 2026-12-07: the same command started the regrade over, a plain run regraded none)."""
+    from autograder.instructor.batch import run as batch_run
+
+    small = tmp_path / "small"
+    for name in ("ann", "bo", "cy"):
+        write(small / name / f"{MODULE}.py", reference())
+    out = tmp_path / "out"
+    run_batch(small, out, course=COURSE, workers=1)
+    grade_locally = batch_run._grade_locally
+
+    def stopped_after_one(todo, arguments, finished, workers, rules, running=None):
+        grade_locally(todo[:1], arguments, finished, workers, rules, running=running)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(batch_run, "_grade_locally", stopped_after_one)
+    with pytest.raises(KeyboardInterrupt):
+        run_batch(small, out, course=COURSE, workers=1, regrade=True)
+    monkeypatch.setattr(batch_run, "_grade_locally", grade_locally)
+    resumed = run_batch(small, out, course=COURSE, workers=1, regrade=True)
+    assert (resumed.graded, resumed.reused) == (2, 1)
+    assert any("an interrupted regrade resumed: 2" in w for w in resumed.warnings)
+    with Gradebook(out) as book:
+        assert sorted(book.grading_counts().values()) == [2, 2, 2]
+    assert run_batch(small, out, course=COURSE, workers=1).graded == 0   # (done: nothing left)
+    assert run_batch(small, out, course=COURSE, workers=1, regrade=True).graded == 3   # (a new regrade: all)
+
+
 def test_sigkill_half_way_then_restart_equals_an_uninterrupted_run(generated, graded, tmp_path):
     submissions, expected = generated
     reference_out, _ = graded

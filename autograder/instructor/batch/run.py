@@ -47,6 +47,7 @@ from .task import grade_files, grading_processes
 
 PICTURES = {"none": "none", "failing": "failed", "all": "all"}
 POOL_ATTEMPTS = 3   # a submission whose grading kills the grading process this often is recorded as failed
+REGRADE_LEFT = "regrade left"   # the gradebook's record of the submissions a --regrade has still to grade again
 
 
 class Unconfined(IngestError):
@@ -151,7 +152,16 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
             book.set_meta("roster", json.dumps({"columns": roster_rows.columns, "rows": list(roster_rows)}))
         readable = [e for e in entries if not e.error]
         summary.unreadable = [f"{e.origin}: {e.error}" for e in entries if e.error]
-        todo = [e for e in readable if regrade or not book.is_graded(keys[e.student_id])]
+        # A regrade is kept as the keys still to grade again (REGRADE_LEFT), so one interrupted resumes where it
+        # stopped, by the same command or a plain run: what it had regraded is not graded a third time.
+        left = set(json.loads(book.get_meta(REGRADE_LEFT) or "[]"))
+        if regrade and not left:
+            left = {keys[e.student_id] for e in readable}
+            book.set_meta(REGRADE_LEFT, json.dumps(sorted(left)))
+        elif left:
+            summary.warnings.append(f"an interrupted regrade resumed: {len(left & set(keys.values()))} submissions "
+                                    "were left to grade again")
+        todo = [e for e in readable if keys[e.student_id] in left or not book.is_graded(keys[e.student_id])]
         summary.reused = len(readable) - len(todo)
 
         def finished(entry: Entry, outcome: dict):
@@ -172,6 +182,9 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
             if "error" in outcome:
                 book.record(key, entry.student_id, entry.content_hash, selection, reason=outcome["error"], lock=lock)
                 summary.failed.append(f"{entry.student_id}: {outcome['error']}")
+            if key in left:
+                left.discard(key)
+                book.set_meta(REGRADE_LEFT, json.dumps(sorted(left)))
             if progress:
                 progress("done", entry, summary)
 
@@ -191,6 +204,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
             _grade_locally(todo, arguments, finished, workers or os.cpu_count() or 1, rules,
                            running=lambda ids: setattr(summary, "running", ids))
 
+        if left:   # (every submission graded: a key left belongs to no one handed in now)
+            book.set_meta(REGRADE_LEFT, "[]")
         standing = class_grades(book, course)
         # Every run is an audit: whose final grade moved since the last one, and what moved it.
         before, _ = changes.recorded(book)
