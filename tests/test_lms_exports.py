@@ -147,3 +147,15 @@ def test_a_class_of_folders_matches_canvas_s_own_export_by_login(tmp_path):
     matched, unmatched, absent = exports.match_roster(folders, list(rows))
     assert matched["bkim"]["name"] == "Kim, Bo" and matched["s2"]["name"] == "Lee, Ann"
     assert not unmatched and [row["name"] for row in absent] == ["Nobody, Ned"]
+
+
+def test_a_late_rule_over_an_upload_without_times_says_it_applied_nothing():
+    """A plain folder carries no submission times: the late rule cannot apply, and the batch says so (audit of
+    2026-12-07: it applied nothing, silently)."""
+    course = CourseConfig(late_penalty={"per_day": 10, "due": "2026-12-01T00:00:00+00:00"})
+    folders = [student("ann", "ann", source="folder")]
+    _, warnings = exports.compute_grades(folders, RAW, course)
+    assert any("no submission times" in w for w in warnings), warnings
+    timed = [dict(student("bo", "bo"), submitted_at="2026-12-03T10:00:00+00:00")]
+    grades, warnings = exports.compute_grades(timed, RAW, course)
+    assert not any("no submission times" in w for w in warnings) and grades[0].late_penalty > 0

@@ -458,6 +458,11 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
             if grade.late_penalty:
                 grade.adjustments.append(Adjustment("late", f"-{grade.late_penalty:g}",
                                                     f"{days} day(s) late: {percent:g}% of the points earned"))
+    if course.late_penalty and any(g.graded for g in grades) \
+            and not any(g.student.get("submitted_at") or g.student.get("late") for g in grades):
+        # (a plain folder or zip says nothing of when work was handed in: no day can be late)
+        warnings.append("late_penalty: this upload carries no submission times (a folder or zip of the students' "
+                        "work has none; an LMS download has them), so no late penalty was applied")
     for o in overrides:
         candidates = _named_by(o.student, grades, index)
         if not candidates:
