@@ -215,14 +215,14 @@ SENDING = """
                 time.sleep(0.0005)
         threading.Thread(target=watch, daemon=True).start()
 
-    def exit_while_sending():
+    def exit_while_sending(given):
         _when_sending(lambda: os._exit(3))
         return np.ones(64 * 2**20, np.uint8)
 
-    def contiguous(mb):
+    def contiguous(mb, given):
         return np.ones(mb * 2**20, np.uint8)
 
-    def strided(mb):
+    def strided(mb, given):
         return np.ones((mb, 2, 2**20), np.uint8)[:, 0]    # half of what it holds, not contiguous
 
     def fine():
@@ -230,11 +230,15 @@ SENDING = """
     """
 
 
+# (a reply may hold 64 times what its call is given: 2 MiB given allows these replies of up to 128 MiB)
+GIVEN = np.zeros(2 << 20, np.uint8)
+
+
 class TestRepliesOnTheirWay:
     def test_a_worker_ending_while_it_sends_is_told_so(self, tmp_path):
         """The grader read the reply's length: the call had returned; the worker ended after."""
         with sandbox_for(tmp_path, SENDING, Limits(call_timeout=10.0)) as box:
-            outcome = box.call("m", "exit_while_sending")
+            outcome = box.call("m", "exit_while_sending", (GIVEN,))
             assert (outcome.kind, outcome.message) == (
                 "crashed", "exit_while_sending() returned 64 MiB, and the worker ended (exit code 3) while "
                            "sending it back; a thread or process your code left running can end it")
@@ -245,7 +249,7 @@ class TestRepliesOnTheirWay:
         array's own memory, or copied a few MiB at a time (one joined frame was three copies)."""
         with sandbox_for(tmp_path, SENDING, Limits(call_timeout=20.0, memory=300 << 20)) as box:
             for function, mb, size in (("contiguous", 80, 80 << 20), ("strided", 64, 64 << 20)):
-                outcome = box.call("m", function, (mb,))
+                outcome = box.call("m", function, (mb, GIVEN))
                 assert outcome.ok, outcome.message
                 assert outcome.value.nbytes == size and outcome.value.min() == 1
 
