@@ -39,7 +39,7 @@ def remember(trial) -> None:
         return
     for function, args, kwargs, value in trial.calls:
         seen = shared.setdefault((KEY, trial.lab.module, function), {"inputs": {}, "answers": set(), "checks": set()})
-        seen["checks"].add(trial.check.name)
+        seen["checks"].add((trial.check.exercise.id, trial.check.name))
         if len(seen["answers"]) > 1:
             continue   # (its answers vary: nothing more to keep)
         given = fingerprint(args, kwargs)
@@ -65,7 +65,7 @@ def zero_constant(sandbox, exercise, results: list[CheckResult]) -> None:
                 "given, whose right answers differ: its answer does not depend on what it is given, so no check of "
                 "its answers can pass")
         for k, result in enumerate(results):
-            if result.max_score > 0 and result.score > 0 and result.name in seen["checks"]:
+            if result.max_score > 0 and result.score > 0 and (exercise.id, result.name) in seen["checks"]:
                 results[k] = replace(result, score=0.0, status=FAILED, message=said, hint="", mistake=MISTAKE)
 
 
