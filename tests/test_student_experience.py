@@ -333,14 +333,15 @@ def test_the_left_out_note_is_whole_on_request_without_duplicates_as_written(tmp
     result = grade(folder, ["lab07.ex1"])
     [note] = [n for n in result.notes if "left out at grading" in n]
     first, *listed = note.splitlines()
-    assert "and 7 more (validate lists them all)" in first
-    assert len(listed) == 12 and len(set(listed)) == len(listed)
+    assert "and 8 more (validate lists them all)" in first
+    assert len(listed) == 13 and len(set(listed)) == len(listed)
     assert "cells 3, 4 `plt.show()` (plotting)" in listed, "the same statement in two cells is one line"
+    assert "cell 2 `%matplotlib inline` (IPython syntax: commented out)" in listed   # as written
     assert all("get_ipython" not in line for line in listed)
     text = " ".join(terminal_text(result).split())   # the lines as one, whatever the wrapping
     assert " ".join(f"note: {first}".split()) in text and listed[-1] not in text   # the first line only
     for page in (html.render(result), html.render_selfcheck(result, "the kernel's code")):
-        assert "<details><summary>all 12 listed</summary>" in page and "out7 = translate(img, 7, 0)" in page
+        assert "<details><summary>all 13 listed</summary>" in page and "out7 = translate(img, 7, 0)" in page
     # check() in a kernel reads the cells as written: %matplotlib inline, not IPython's translation
     from autograder.student import selfcheck
 
