@@ -203,6 +203,7 @@ NO_SUBMISSION = ("autograder grade needs the submission to grade: a folder, .py,
 
 
 def run_grade(args) -> int:
+    from .engine.labfolders import bundled_selection
     from .instructor.course import CourseConfig, CourseConfigError
 
     try:  # read first: its time limits are the worker's, and the worker starts next
@@ -213,6 +214,8 @@ def run_grade(args) -> int:
     limits = course.limits() if args.config else Limits()
     if args.timeout:
         limits = replace(limits, call_timeout=args.timeout)
+    # (what to grade: the selection named, else the course's, else a course bundle's own -- course_labs/selection.json)
+    chosen = args.select or course.select or bundled_selection()
     lanes = lanes_for(args.select)
     # First: the worker boots meanwhile.
     early = _early_sandbox(limits.shared_by(lanes)) if args.submission is not None else None
@@ -246,7 +249,7 @@ def run_grade(args) -> int:
                 if note:
                     errors.print(f"[yellow]note:[/yellow] {escape(note)}", highlight=False)
                 begun = time.monotonic()  # the submission's deadline counts from here: its figures share it
-                result = grade(args.submission, args.select or course.select, limits=limits, pictures=pictures,
+                result = grade(args.submission, chosen, limits=limits, pictures=pictures,
                                rerun=_rerun(args),
                                include_hidden=not args.public_only, on_check=advance, forbid=course.forbid,
                                lanes=lanes, sandboxes=[early] if early else [],
@@ -262,7 +265,7 @@ def run_grade(args) -> int:
     moved = _since_previous_run(result, args, html_path, console)
     written, status = [], 0
     # Figures are part of the grading: its calls' limits (a lane's memory share), what is left of its deadline.
-    graded, deadline = limits.shared_by(lanes), begun + grading_budget(limits, args.select or course.select)
+    graded, deadline = limits.shared_by(lanes), begun + grading_budget(limits, chosen)
     figures = {}
     if getattr(args, "figures", None):
         figures = _write_figures(args, graded, deadline, console, errors, written)

@@ -434,3 +434,10 @@ def test_the_student_bundle_ships_the_skeleton_and_public_checks_only(tmp_path):
     result = json.loads((out / "results.json").read_text())
     assert result["total"] == 0 and result["max_total"] == 9      # the public checks: 12 - 3 hidden points
     assert all("not implemented yet" in c["message"] for e in result["exercises"] for c in e["checks"])
+    # A course of its own labs grades those alone, in its bundle too: `python grade.py` names none (audit of
+    # 2026-12-07: the bundle graded the six built-in labs beside it).
+    assert json.loads((out / "course_labs" / "selection.json").read_text()) == list(course.select) == ["lab13"]
+    run = subprocess.run([sys.executable, "grade.py", "--no-html", "--json", "whole.json"],
+                         cwd=out, env=env, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert {e["id"].split(".")[0] for e in json.loads((out / "whole.json").read_text())["exercises"]} == {"lab13"}

@@ -28,6 +28,7 @@ from __future__ import annotations
 import hashlib
 import importlib
 import importlib.util
+import json
 import sys
 import traceback
 from dataclasses import dataclass
@@ -41,6 +42,7 @@ REFERENCE, SKELETON = "reference", "skeleton"
 ANSWERS = (REFERENCE, HIDDEN, MISTAKES)
 # A copy of the grader holding course labs beside its package loads them unasked.
 BUNDLED = Path(__file__).resolve().parents[2] / "course_labs"
+SELECTION = "selection.json"   # in BUNDLED: what the bundle's course grades by default
 
 
 class LabFolderError(ValueError):
@@ -100,6 +102,16 @@ def lab_folder(lab: Lab) -> LabFolder | None:
 
 def course_lab_folders() -> list[LabFolder]:
     return list(_LOADED.values())
+
+
+def bundled_selection() -> list[str]:
+    """What a student bundle made for a course grades when nothing is named (``course_labs/selection.json``: the
+    course's ``select``, its own labs alone for a course of its own labs); ``[]`` (everything) without one."""
+    try:
+        chosen = json.loads((BUNDLED / SELECTION).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return []
+    return [item for item in chosen if isinstance(item, str) and item] if isinstance(chosen, list) else []
 
 
 def load_bundled() -> None:

@@ -17,13 +17,14 @@ Python and platform that made it, so the bundle installs with no network
 
 from __future__ import annotations
 
+import json
 import shutil
 import subprocess
 import sys
 import sysconfig
 from pathlib import Path
 
-from ..engine.labfolders import ANSWERS, BUNDLED, SKELETON
+from ..engine.labfolders import ANSWERS, BUNDLED, SELECTION, SKELETON
 from ..engine.versions import DEFAULT_OPENCV, constraints_file
 
 PROJECT_ROOT = Path(__file__).resolve().parents[2]
@@ -66,6 +67,11 @@ def write_student_bundle(out, root: Path = PROJECT_ROOT, course=None) -> list[Pa
                 copy(path, out / path.relative_to(root))
     for path in sorted((root / "assignments").glob("*.py")):
         copy(path, out / "assignments" / path.name)
+    if course is not None and course.select:   # (what `python grade.py` grades when nothing is named)
+        target = out / COURSE_LABS / SELECTION
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text(json.dumps(list(course.select)) + "\n", encoding="utf-8")
+        written.append(target.relative_to(out))
     for lab_folder in course_lab_folders(course):
         skeleton = lab_folder.part(SKELETON) / f"{lab_folder.lab.module}.py"
         copy(skeleton, out / "assignments" / skeleton.name)
