@@ -685,7 +685,8 @@ def test_huge_and_odd_numbers_cross_as_the_numbers_checks_compute_with():
 
 def test_a_checks_kept_calls_hold_a_bounded_share_of_answers():
     """A check keeps its last calls for naming: at most 64 MiB of their answers, the last call whatever its size."""
-    from autograder.engine.checks import _CALLS_BYTES, _within_bytes, answer_bytes
+    from autograder.engine.checks import _CALLS_BYTES, _within_bytes
+    from autograder.sandbox.supervisor import array_bytes as answer_bytes
 
     calls = [("f", (k,), {}, np.zeros(2**22)) for k in range(40)]   # 32 MiB each
     _within_bytes(calls, _CALLS_BYTES)

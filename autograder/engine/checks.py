@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..sandbox.beginner import uint8_wraps
-from ..sandbox.supervisor import CallOutcome, Sandbox
+from ..sandbox.supervisor import CallOutcome, Sandbox, array_bytes
 from . import pictures
 from .claims import measured
 from .forms import shape_form
@@ -144,21 +144,9 @@ _ONE_ENGINE = threading.Lock()
 def _within_bytes(calls: list, largest: int) -> None:
     """Drop the oldest of ``calls`` [(function, args, kwargs, answer)] until their answers' arrays hold at most
     ``largest`` bytes (the last call is kept whatever its size)."""
-    sizes = [answer_bytes(call[3]) for call in calls]
+    sizes = [array_bytes(call[3]) for call in calls]
     while len(calls) > 1 and sum(sizes) > largest:
         del calls[0], sizes[0]
-
-
-def answer_bytes(value, depth: int = 0) -> int:
-    """The bytes of the arrays in an answer (numbers outside arrays are few: the transport bounds them)."""
-    if isinstance(value, np.ndarray):
-        return value.nbytes
-    if depth < 4 and isinstance(value, dict):
-        value = list(value.values())
-    if depth < 4 and isinstance(value, (list, tuple)) and value \
-            and isinstance(value[0], (np.ndarray, list, tuple, dict)):
-        return sum(answer_bytes(item, depth + 1) for item in value)
-    return 0
 
 
 class Trial:

@@ -140,6 +140,20 @@ def describe_difference(got, expected, unit: str = "", tolerance: float | None =
     return text
 
 
+def same_to_precision(got, expected, relative: float = 1e-7) -> bool:
+    """The same answer up to the precision the student computes in (``relative`` of the answer's largest finite
+    entry, at least float32's rounding for float32 answers: a product summed in another order by BLAS), NaN where
+    NaN is. Two calls of one function, or one point alone and among many, answer alike by this."""
+    got, expected = np.asarray(got), np.asarray(expected)
+    eps = max([np.finfo(a.dtype).eps for a in (got, expected) if a.dtype.kind == "f"], default=0.0)
+    rtol = max(relative, 16 * float(eps))
+    got, expected = got.astype(np.float64), expected.astype(np.float64)
+    finite = np.isfinite(expected)
+    scale = max(1.0, float(np.abs(expected[finite]).max())) if finite.any() else 1.0
+    return got.shape == expected.shape and bool(np.allclose(got, expected, rtol=rtol, atol=rtol * scale,
+                                                           equal_nan=True))
+
+
 # ---------------------------------------------------------------- matrices
 def projective_distance(a, b) -> float:
     """Distance between two projective quantities (H, F, E, P), up to scale and sign.

@@ -23,6 +23,7 @@ from dataclasses import replace
 import numpy as np
 
 from .checks import fingerprint
+from .compare import projective_distance
 from .results import FAILED, CheckResult
 
 KEY = "answers seen"
@@ -103,16 +104,9 @@ def _differ(a, b) -> bool:
         x, y = np.asarray(a, np.float64), np.asarray(b, np.float64)
     except (TypeError, ValueError):
         return a != b
-    if x.shape != y.shape:
+    if x.shape != y.shape or not np.array_equal(np.isfinite(x), np.isfinite(y)):
         return True
-    return not np.allclose(_unit(x), _unit(y), rtol=1e-6, atol=1e-9, equal_nan=True)
-
-
-def _unit(x: np.ndarray) -> np.ndarray:
-    """``x`` at unit norm, its largest entry positive (its finite entries; as it is when all are 0)."""
-    finite = np.where(np.isfinite(x), x, 0.0)
-    norm = np.linalg.norm(finite)
-    if norm == 0:
-        return x
-    largest = finite.flat[np.argmax(np.abs(finite))]
-    return x / norm * np.sign(largest)
+    x, y = np.where(np.isfinite(x), x, 0.0), np.where(np.isfinite(y), y, 0.0)   # (NaN where NaN is: alike)
+    if not x.any() or not y.any():
+        return bool(x.any() or y.any())
+    return not projective_distance(x, y) <= 1e-6

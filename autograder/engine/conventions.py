@@ -37,6 +37,7 @@ import numpy as np
 
 from .checks import StudentFailure, Trial, passed
 from .claims import from_code, measured, where_to_look
+from .compare import same_to_precision
 from .forms import IMAGE_SIDE
 from .hints import code_of
 
@@ -239,15 +240,8 @@ def judge_grey(t: Trial, function: str, args: tuple, images, described: str = ""
 
 
 def _close(got, expected) -> bool:
-    """The same answer up to the precision the student computes in: a float32 product of one row and of
-    many may be summed in another order (BLAS), so float32's rounding is allowed, float64's is not."""
-    eps = max([np.finfo(a.dtype).eps for a in (np.asarray(got), np.asarray(expected)) if a.dtype.kind == "f"],
-              default=0.0)
-    rtol = max(RELATIVE, 16 * float(eps))
-    got, expected = np.asarray(got, np.float64), np.asarray(expected, np.float64)
-    scale = max(1.0, float(np.nanmax(np.abs(expected)))) if np.isfinite(expected).any() else 1.0
-    return got.shape == expected.shape and bool(np.allclose(got, expected, rtol=rtol, atol=rtol * scale,
-                                                           equal_nan=True))
+    """The same answer up to the precision the student computes in (:func:`..compare.same_to_precision`)."""
+    return same_to_precision(got, expected, RELATIVE)
 
 
 def judge_rows(t: Trial, function: str, args: tuple, rows, described: str = ""):

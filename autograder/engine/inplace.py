@@ -33,6 +33,7 @@ import ast
 import numpy as np
 
 from .claims import guard, measured
+from .compare import same_to_precision
 from .hints import Predicate
 
 MISTAKE = "the caller's array is changed in place"
@@ -179,9 +180,9 @@ SAME = 1e-7   # relative to the answer's largest entry: the same answer, but for
 
 
 def _same(a, b, fingerprint) -> bool:
-    """Whether answers ``a`` and ``b`` are one answer: equal, or of the same structure with their numbers within
-    :data:`SAME` of the largest (float32's rounding allowed). A last digit's noise added to every answer (hostile
-    round of 2026-12-07) does not make a repeated call's answer another one."""
+    """Whether answers ``a`` and ``b`` are one answer: equal, or of the same structure with their numbers the same
+    to the precision computed in (:func:`.compare.same_to_precision`, :data:`SAME`). A last digit's noise added to
+    every answer (hostile round of 2026-12-07) does not make a repeated call's answer another one."""
     if fingerprint(a) == fingerprint(b):
         return True
     if isinstance(a, (tuple, list)) and isinstance(b, (tuple, list)):
@@ -190,14 +191,7 @@ def _same(a, b, fingerprint) -> bool:
         x, y = np.asarray(a), np.asarray(b)
     except Exception:  # noqa: BLE001 - an answer NumPy cannot read is compared by its fingerprint alone
         return False
-    if x.shape != y.shape or x.dtype.kind not in "biuf" or y.dtype.kind not in "biuf" or x.size == 0:
-        return False
-    eps = max([np.finfo(v.dtype).eps for v in (x, y) if v.dtype.kind == "f"], default=0.0)
-    rtol = max(SAME, 16 * float(eps))
-    x, y = x.astype(np.float64), y.astype(np.float64)
-    finite = np.isfinite(y)
-    scale = max(1.0, float(np.abs(y[finite]).max())) if finite.any() else 1.0
-    return bool(np.allclose(x, y, rtol=rtol, atol=rtol * scale, equal_nan=True))
+    return x.size > 0 and x.dtype.kind in "biuf" and y.dtype.kind in "biuf" and same_to_precision(x, y, SAME)
 
 
 AUGMENTS = Predicate("writes an augmented assignment (x /= s)",

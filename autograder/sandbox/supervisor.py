@@ -88,14 +88,15 @@ def where_stopped(text: str, module_files: set[str]) -> str:
         return said
     return ""
 
-def _array_bytes(value, depth: int = 0) -> int:
-    """The bytes of the arrays in ``value`` (arguments the grader made: arrays, numbers, lists and dicts of them)."""
-    if depth > 8:
-        return 0
-    if isinstance(value, (list, tuple)):
-        return sum(_array_bytes(item, depth + 1) for item in value)
-    if isinstance(value, dict):
-        return sum(_array_bytes(item, depth + 1) for item in value.values())
+def array_bytes(value, depth: int = 0) -> int:
+    """The bytes of the arrays in ``value`` (arguments or answers: arrays, numbers, and lists, tuples and dicts of
+    them). Numbers outside arrays are few (the transport bounds them): a long list whose first item is a number is not
+    walked, so a list of a million numbers costs nothing to measure."""
+    if depth < 4 and isinstance(value, dict):
+        value = list(value.values())
+    if depth < 4 and isinstance(value, (list, tuple)):
+        numbers = len(value) > 16 and isinstance(value[0], (int, float, complex, str, bool))
+        return 0 if numbers else sum(array_bytes(item, depth + 1) for item in value)
     size = getattr(value, "nbytes", 0)   # (an array: NumPy is not imported here to start a worker)
     return size if type(size) is int else 0
 
@@ -103,7 +104,7 @@ def _array_bytes(value, depth: int = 0) -> int:
 def answer_cap(largest: int, *given) -> int:
     """The most bytes a reply to a call given ``given`` (its arguments) may hold: :data:`ANSWER_RATIO` times their
     arrays' bytes, at least :data:`ANSWER_FLOOR`, at most ``largest``."""
-    return int(min(largest, max(ANSWER_FLOOR, ANSWER_RATIO * sum(_array_bytes(g) for g in given))))
+    return int(min(largest, max(ANSWER_FLOOR, ANSWER_RATIO * sum(array_bytes(g) for g in given))))
 
 
 FAILURE_KINDS = {

@@ -40,7 +40,8 @@ import numpy as np
 
 from ...loading.parsing import parse
 from ...loading.reading import MAX_SOURCE_BYTES
-from ..checks import Trial, Verdict, answer_bytes, fingerprint
+from ...sandbox.supervisor import array_bytes
+from ..checks import Trial, Verdict, fingerprint
 from ..hints import RANDOM_DRAWS, SIZE_ARGUMENTS
 from ..inherited import SHARED_FAILING
 from . import anchors, naming
@@ -3781,7 +3782,7 @@ class _Variants:
         self.seconds_per_call = trial.student_seconds / max(1, len(trial.calls))
         # (what one variant's answer may hold: a right one holds the reference's, an image of floats where 8 bits
         # are asked 8 times that; the grader holds every variant's answers while it compares them)
-        self.answer_bytes = 2**20 + 16 * max([answer_bytes(reference) for reference in references], default=0)
+        self.answer_bytes = 2**20 + 16 * max([array_bytes(reference) for reference in references], default=0)
         self.projective = not any(naming.error_kind(answer) is None and _within(answer, reference, 1e-4, 1.0)
                                   for answer, reference in zip(self.students, references))
         self.replayable = _replayable(trial)
