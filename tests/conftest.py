@@ -20,6 +20,7 @@ import fcntl
 import hashlib
 import json
 import os
+import re
 import shutil
 import tempfile
 import textwrap
@@ -250,6 +251,16 @@ def assert_mistake_named(module: str, exercise: str, source: str, fragments):
     result = graded_case(module, exercise, source)
     assert_diagnosed(result, exercise, *fragments)
     return result
+
+
+def told_or_pointed(check, checks, change: str) -> bool:
+    """Whether ``check``'s message tells ``change``, or points to the check among ``checks`` that told it beside
+    the same mistake (a later check of a function whose change was told: not searched again)."""
+    if change in check.message:
+        return True
+    pointed = re.search(r'The same mistake is named at the check "(.+?)", with the change', check.message)
+    return pointed is not None and any(c.name == pointed.group(1) and change in c.message and c.mistake == check.mistake
+                                       for c in checks)
 
 
 def assert_only_exercise_lost(result, lost: str, *fragments: str):

@@ -715,6 +715,7 @@ def _public_memory_to(fresh: list, public: list) -> None:
     calls seen and the changes told. Copies, one way: what a hidden check adds never reaches a public worker's, and
     the public phase has ended."""
     from .inherited import SHARED_FAILING
+    from .mutants.repair import TOLD_BESIDE
 
     for sandbox in fresh:
         for done in public:
@@ -727,8 +728,8 @@ def _public_memory_to(fresh: list, public: list) -> None:
                 elif key == "repair seen":
                     for function, calls in value.items():
                         sandbox.shared.setdefault(key, {}).setdefault(function, []).extend(calls)
-                elif key in ("repair found", "repair complete"):   # (the changes told, and whether every other
-                    for function, told in value.items():          # was tried: one mistake, one repair, hidden checks too)
+                elif key in ("repair found", "repair complete", TOLD_BESIDE):   # (the changes told, and whether every
+                    for function, told in value.items():   # other was tried: one mistake, one repair, hidden checks too)
                         sandbox.shared.setdefault(key, {}).setdefault(function, list(told) if key == "repair found" else told)
 
 

@@ -4596,6 +4596,34 @@ def _downstream_dropped(repair: Repair, code) -> Repair:
     return replace(repair, fixes=tuple(kept)) if kept and len(kept) < len(repair.fixes) else repair
 
 
+TOLD_BESIDE = "repair told beside"   # the grading's {(function, a check's own mistake): (that check, one complete change)}
+
+
+def _told_beside_before(verdict, trial):
+    """The verdict of a check naming a mistake its own way (``verdict.mistake``) that an earlier check of the
+    grading named alike, of the same functions, and told with a confirmed change of the student's code beside
+    it: pointed to that check, not searched again (the same change on every check of a slow function -- a
+    block matcher's ten checks on photographs, each confirmation a block matching -- took the grading's whole
+    time for naming, and the functions graded after it had none). The check's fixed hint gives way where that
+    change was the one complete account (as :func:`named_by_repair` does for a change confirmed earlier).
+    None where it was not told."""
+    told = trial.sandbox.shared.get(TOLD_BESIDE, {})
+    functions = [function for function in _recorded(trial) if function in getattr(naming.model_for(trial.lab), "mutants", {})]
+    earlier = [told.get((function, verdict.mistake)) for function in functions]
+    if not verdict.mistake or not earlier or None in earlier:
+        return None
+    check, complete = earlier[0] if len(set(earlier)) == 1 else (earlier[0][0], False)
+    first, newline, rest = str(verdict.message).partition("\n")
+    from ..claims import without_guessed_cause, without_where_to_look
+
+    lead = without_where_to_look(first).rstrip()
+    if without_guessed_cause(lead, verdict.mistake) != lead:
+        return None   # (a cause guessed from the answers: a change confirmed on this check's inputs may refute it)
+    lead += "" if not lead or lead[-1] in ".:;!?" else "."
+    pointer = f'The same mistake is named at the check "{check}", with the change of your code that mends it there.'
+    return replace(verdict, message=f"{lead} {pointer}{newline}{rest}", hint="" if complete else verdict.hint)
+
+
 def named_by_repair(verdict, trial, traceback_text: str = ""):
     """A failed check's verdict with a confirmed repair told at the end of its first line (in place of
     its fixed hint), when the verdict names nothing or only the error model names it; beside the
@@ -4615,6 +4643,10 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
     by_hand = not by_mutant and bool(verdict.mistake or "looks like" in str(verdict.message).lower())
     if by_hand and not _beside(verdict):
         return verdict
+    if by_hand:
+        pointed = _told_beside_before(verdict, trial)
+        if pointed is not None:
+            return pointed
     found_before = {function: {repr(m.edits) for m in mutants}
                     for function, mutants in trial.sandbox.shared.get("repair found", {}).items()}
     repair = name_by_repair(trial, BESIDE_SECONDS, BESIDE_TRIES, said=str(verdict.message)) if by_hand \
@@ -4661,6 +4693,9 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
         if guessed != lead:
             return replace(verdict, message=f"{guessed} {repair.sentence}.{newline}{rest}", mistake=repair.mistake,
                            hint="")
+        if verdict.mistake:   # (the check's name stands beside the change: its later checks point here)
+            trial.sandbox.shared.setdefault(TOLD_BESIDE, {}).setdefault(
+                (repair.function, verdict.mistake), (trial.check.name, repair.complete and len(repair.fixes) == 1))
         return replace(verdict, message=f"{lead} {repair.sentence}.{newline}{rest}",
                        hint="" if known else verdict.hint)
     if by_mutant:
