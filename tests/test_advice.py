@@ -186,21 +186,29 @@ def scale(values, factor):
 """
 
 
-def test_answers_that_vary_for_the_same_input_are_not_blamed_on_the_change(toy_lab, tmp_path):
-    """Answers that differ from call to call (here by a millionth each call, as a random draw without a seed
-    would) say nothing of the change."""
+def test_answers_that_vary_for_the_same_input_are_not_blamed_on_a_change_within_their_spread(toy_lab, tmp_path):
+    """Answers that differ from call to call (by a millionth, as a random draw without a seed would) say nothing of
+    a change whose effect on the answer is within that spread."""
     drifting = """
-import itertools
-_calls = itertools.count(1)
+import numpy as np
 
 def scale(values, factor):
-    out = values * factor + 1e-6 * next(_calls)
-    values *= factor                  # shows in a second call
+    out = values * factor + np.random.default_rng().normal(0, 1e-6, len(values))
+    values += 1e-9                    # a change in place far within the answers' own spread
     return out
 """
     result = grade(submission_from_source(tmp_path, "toy_scaling", drifting), ["lab98"])
     [doubles] = [c for c in result.exercises[0].checks if c.name == "scale([1, 2, 3], 2)"]
     assert doubles.passed, doubles.message
+
+
+@pytest.mark.parametrize("noise", [1e-6, 1e-5])
+def test_answers_that_vary_do_not_hide_a_change_that_shows_far_beyond_their_spread(toy_lab, tmp_path, noise):
+    """Jitter added to every answer (hostile round of 2026-12-07: 1e-5, within every accuracy check) made the second
+    call's answer "another draw": the caller's array doubled doubles the answer, far beyond the jitter."""
+    result = grade(submission_from_source(tmp_path, "toy_scaling", NOISY.format(noise=noise)), ["lab98"])
+    [doubles] = [c for c in result.exercises[0].checks if c.name == "scale([1, 2, 3], 2)"]
+    assert doubles.score == 0 and doubles.mistake == "the caller's array is changed in place", doubles.message
 
 
 def test_noise_in_the_last_digits_does_not_hide_a_change_in_place(toy_lab, tmp_path):

@@ -6,10 +6,10 @@ default against the API's value. A function that returns one constant computes n
 passes all of them. In the hostile round of 2026-12-07, ``return np.full(1, 0.5)`` in every
 function earned 43 of the 464 public points.
 
-While an exercise is graded, :func:`remember` keeps, for each function, the fingerprints of its
-answers to distinct inputs and the checks that called it. A function is constant when at least
-two distinct inputs got the same answer, bit for bit, and the reference's answers to those inputs
-differ. The reference is compared up to scale and sign, because the labs ask for every matrix and
+While an exercise is graded, :func:`remember` keeps, for each function, its first answer, the distinct
+inputs answered alike and the checks that called it. A function is constant when at least
+two distinct inputs got answers alike (within :data:`ALIKE` of the largest entry), and the reference's
+answers to those inputs differ (by more than :data:`DIFFERENT`). The reference is compared up to scale and sign, because the labs ask for every matrix and
 homogeneous vector only up to those. :func:`zero_constant` then sets to 0 the points of the
 exercise's checks that called such a function.
 
@@ -25,7 +25,14 @@ import numpy as np
 from .checks import fingerprint
 from .compare import projective_distance
 from .results import FAILED, CheckResult
+from ..sandbox.supervisor import array_bytes
 
+# Alike: within ALIKE of the answer's largest entry, where the right answers are DIFFERENT apart (up to scale and
+# sign): the answer carries nothing of its input, whatever tag drawn from the input it carries (hostile round of
+# 2026-12-07: 1e-13, then 1e-9 times the length of the arguments' text, each within the checks' own 1e-7 where
+# those checks compared). A right answer is that near another only where the right answers are too.
+ALIKE = 1e-4
+DIFFERENT = 1e-2
 KEY = "answers seen"
 KEPT = 4               # distinct inputs (their arguments) kept per function for the reference's confirmation
 SECONDS = 10.0         # for the reference's answers to them
@@ -33,23 +40,40 @@ MISTAKE = "the answer does not depend on the input"
 
 
 def remember(trial) -> None:
-    """Keep, for each function the trial called, its answers' fingerprints (distinct inputs only) and the
-    check, until two different answers show that it does depend on its input."""
+    """Keep, for each function the trial called, its first answer and up to :data:`KEPT` distinct inputs answered
+    alike, and the checks that called it, until an answer not alike (:data:`ALIKE`, :func:`.inplace.same_answer`)
+    shows that it does depend on its input. Alike, not equal bit for bit: a tag drawn from each input changes
+    nothing the answer says of it."""
+    from .inplace import same_answer
+
     shared = getattr(getattr(trial, "sandbox", None), "shared", None)
     if shared is None:
         return
     for function, args, kwargs, value in trial.calls:
-        seen = shared.setdefault((KEY, trial.lab.module, function), {"inputs": {}, "answers": set(), "checks": set()})
+        seen = shared.setdefault((KEY, trial.lab.module, function), {"inputs": {}, "first": None, "varies": False,
+                                                                     "checks": set()})
         seen["checks"].add((trial.check.exercise.id, trial.check.name))
-        if len(seen["answers"]) > 1:
+        if seen["varies"]:
             continue   # (its answers vary: nothing more to keep)
         given = fingerprint(args, kwargs)
         if given in seen["inputs"] or len(seen["inputs"]) >= KEPT:
             continue
-        seen["answers"].add(fingerprint(value))
-        seen["inputs"][given] = (args, kwargs) if len(seen["answers"]) == 1 else None
-        if len(seen["answers"]) > 1:
-            seen["inputs"].clear()
+        if not seen["inputs"]:
+            # (an answer larger than a right one ever is stands for itself by its fingerprint: not kept whole)
+            seen["first"] = value if array_bytes(value) <= KEPT_BYTES else ("fingerprint", fingerprint(value))
+        elif not _alike(value, seen["first"], same_answer):
+            seen.update(inputs={}, first=None, varies=True)
+            continue
+        seen["inputs"][given] = (args, kwargs)
+
+
+KEPT_BYTES = 4 << 20   # the largest first answer kept whole for comparing (a photograph's disparity map is 2 MiB)
+
+
+def _alike(value, first, same_answer) -> bool:
+    if isinstance(first, tuple) and len(first) == 2 and first[0] == "fingerprint":
+        return fingerprint(value) == first[1]
+    return same_answer(value, first, ALIKE)
 
 
 def zero_constant(sandbox, exercise, results: list[CheckResult]) -> None:
@@ -58,7 +82,7 @@ def zero_constant(sandbox, exercise, results: list[CheckResult]) -> None:
     shared = getattr(sandbox, "shared", {})
     for function in exercise.signatures:
         seen = shared.get((KEY, exercise.lab.module, function))
-        if not seen or len(seen["answers"]) != 1 or len(seen["inputs"]) < 2:
+        if not seen or seen["varies"] or len(seen["inputs"]) < 2:
             continue
         if not _right_answers_differ(exercise.lab, function, list(seen["inputs"].values())):
             continue
@@ -109,4 +133,4 @@ def _differ(a, b) -> bool:
     x, y = np.where(np.isfinite(x), x, 0.0), np.where(np.isfinite(y), y, 0.0)   # (NaN where NaN is: alike)
     if not x.any() or not y.any():
         return bool(x.any() or y.any())
-    return not projective_distance(x, y) <= 1e-6
+    return not projective_distance(x, y) <= DIFFERENT

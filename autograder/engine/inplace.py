@@ -5,7 +5,8 @@ call rightly and every later one wrongly: the caller's array is no longer what i
 The worker sends back each argument array a call changed, as the caller now holds it
 (:attr:`autograder.sandbox.supervisor.CallOutcome.changed`). :func:`effect_of_change` then
 calls the function twice more: on the same inputs again (a function whose answers vary
-for the same input shows nothing here), and on the inputs as the caller now holds them.
+for the same input shows the change only where the answer moves far more than that), and on the
+inputs as the caller now holds them.
 When that second answer differs from the first, the change has an effect a caller meets,
 and :meth:`autograder.engine.checks.Trial.call` fails the check naming it; a change without
 effect (an idempotent write) keeps only the engine's 0-point advice.
@@ -161,11 +162,18 @@ def effect_of_change(call, function: str, signature: str, args: tuple, kwargs: d
     if again is None:
         return ""
     repeated = call(args, kwargs)
-    if repeated is None or not _same(repeated, outcome.value, fingerprint):
-        return ""   # its answers vary for the same input: a second call shows nothing
+    if repeated is None:
+        return ""
     second = call(*again)
     if second is not None and _same(second, outcome.value, fingerprint):
         return ""
+    if not _same(repeated, outcome.value, fingerprint):
+        # Its answers vary for the same input (a random draw, or noise added to each answer: hostile round of
+        # 2026-12-07, 1e-5 of jitter): the changed array shows only where its answer is far farther from the first
+        # than the same inputs' answer is (a draw's own spread says nothing of the array).
+        spread, apart = _apart(repeated, outcome.value), _apart(second, outcome.value) if second is not None else np.inf
+        if not apart > max(SPREAD_FACTOR * spread, VARYING_EFFECT):
+            return ""
     key, index, after = outcome.changed[0]
     name = argument_name(signature, key, index)
     holder = args[key] if isinstance(key, int) else kwargs[key]
@@ -177,21 +185,53 @@ def effect_of_change(call, function: str, signature: str, args: tuple, kwargs: d
 
 
 SAME = 1e-7   # relative to the answer's largest entry: the same answer, but for noise a caller would never see
+SPREAD_FACTOR = 10.0   # how much farther than the same inputs' answer the changed array's must be (answers that vary),
+VARYING_EFFECT = 1e-3   # and at least (relative to the largest entry): one draw's spread measured is itself a draw
 
 
-def _same(a, b, fingerprint) -> bool:
+def same_answer(a, b, relative: float = SAME) -> bool:
+    """Whether answers ``a`` and ``b`` are one answer, to ``relative`` of their largest entry (:func:`_same`)."""
+    from .checks import fingerprint
+
+    return _same(a, b, fingerprint, relative)
+
+
+def _apart(a, b) -> float:
+    """How far answer ``a`` is from ``b``: the largest difference of their numbers relative to ``b``'s largest finite
+    entry (at least 1); infinite where their structures, shapes or kinds differ or NaN is not where NaN is."""
+    if isinstance(a, (tuple, list)) or isinstance(b, (tuple, list)):
+        if not (isinstance(a, (tuple, list)) and isinstance(b, (tuple, list)) and len(a) == len(b)):
+            return np.inf
+        return max([_apart(x, y) for x, y in zip(a, b)], default=0.0)
+    try:
+        x, y = np.asarray(a), np.asarray(b)
+    except Exception:  # noqa: BLE001 - an answer NumPy cannot read: apart unless equal
+        return 0.0 if a == b else np.inf
+    if x.shape != y.shape or x.dtype.kind not in "biuf" or y.dtype.kind not in "biuf":
+        return 0.0 if x.shape == y.shape and np.array_equal(x, y) else np.inf
+    x, y = x.astype(np.float64), y.astype(np.float64)
+    if not np.array_equal(np.isnan(x), np.isnan(y)):
+        return np.inf
+    finite = np.isfinite(y)
+    scale = max(1.0, float(np.abs(y[finite]).max())) if finite.any() else 1.0
+    with np.errstate(invalid="ignore"):
+        difference = np.where((x == y) | (np.isnan(x) & np.isnan(y)), 0.0, np.abs(x - y))
+    return float(difference.max()) / scale if difference.size else 0.0
+
+
+def _same(a, b, fingerprint, relative: float = SAME) -> bool:
     """Whether answers ``a`` and ``b`` are one answer: equal, or of the same structure with their numbers the same
     to the precision computed in (:func:`.compare.same_to_precision`, :data:`SAME`). A last digit's noise added to
     every answer (hostile round of 2026-12-07) does not make a repeated call's answer another one."""
     if fingerprint(a) == fingerprint(b):
         return True
     if isinstance(a, (tuple, list)) and isinstance(b, (tuple, list)):
-        return len(a) == len(b) and all(_same(x, y, fingerprint) for x, y in zip(a, b))
+        return len(a) == len(b) and all(_same(x, y, fingerprint, relative) for x, y in zip(a, b))
     try:
         x, y = np.asarray(a), np.asarray(b)
     except Exception:  # noqa: BLE001 - an answer NumPy cannot read is compared by its fingerprint alone
         return False
-    return x.size > 0 and x.dtype.kind in "biuf" and y.dtype.kind in "biuf" and same_to_precision(x, y, SAME)
+    return x.size > 0 and x.dtype.kind in "biuf" and y.dtype.kind in "biuf" and same_to_precision(x, y, relative)
 
 
 AUGMENTS = Predicate("writes an augmented assignment (x /= s)",

@@ -32,6 +32,8 @@ import tempfile
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 
+from ..loading.text import printable
+
 # Check statuses, in the words reports use. ADVICE is a tip worth 0 points (an
 # advice check that had something to say, or the engine's own, e.g. inputs
 # modified in place): never a failure, never part of a score.
@@ -76,6 +78,12 @@ class CheckResult:
     redacted: bool = False  # a hidden check as students see it before release: its verdict only
     inputs_digest: str = ""  # what the check gave the student's functions (Trial.given): same files, same digest
 
+    def __post_init__(self):
+        # Its texts carry the student's (printed output, exception messages, names from their code): made inert once,
+        # here, for every report -- the page, JSON, results.json, the terminal, the gradebook.
+        self.message, self.hint, self.output, self.traceback = (
+            printable(self.message), printable(self.hint), printable(self.output), printable(self.traceback))
+
     @property
     def passed(self) -> bool:
         return self.status == PASSED
@@ -107,6 +115,9 @@ class ExerciseResult:
     checks: list[CheckResult] = field(default_factory=list)
     message: str = ""
     rules: list[str] = field(default_factory=list)  # the instructor's extra rules, for the student
+
+    def __post_init__(self):
+        self.message = printable(self.message)   # (a module that does not import: its message is the student's)
 
     @property
     def score(self) -> float:

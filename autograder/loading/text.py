@@ -6,10 +6,13 @@ import re
 
 # C0 controls but tab and newline, DEL, C1 controls (ESC and CSI start terminal
 # commands), the bidirectional marks and overrides that make text read other than it is,
-# and invisible operators (word joiner, byte-order mark). Zero-width joiners stay: names in
-# Persian or Hindi need them to be written right.
-_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2060-\u2064"
-                      "\u2066-\u2069\ufeff]")
+# invisible operators (word joiner, byte-order mark), and what only hides text or tells names
+# apart unseen: the soft hyphen, zero-width space, the blank fillers of Hangul and Mongolian,
+# variation selectors and the tag characters (an instruction spelt invisibly). Zero-width
+# joiners stay: names in Persian or Hindi need them to be written right.
+_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\u00ad\u061c\u115f\u1160\u180e\u200b\u200e\u200f"
+                      "\u202a-\u202e\u2060-\u2064\u2066-\u2069\u3164\ufe00-\ufe0f\ufeff\uffa0"
+                      "\U000e0000-\U000e007f\U000e0100-\U000e01ef]")
 # Unicode's line and paragraph separators: a line break like any other, shown as one.
 _SEPARATOR = re.compile("[\u2028\u2029]")
 
@@ -35,7 +38,8 @@ def shown(name, limit: int = 160) -> str:
     """
     text = _SURROGATE.sub(lambda m: f"\\x{ord(m.group()) - 0xDC00:02x}", str(name))
     text = re.sub("[\x00-\x1f\u2028\u2029]|" + _CONTROL.pattern, lambda m: f"\\x{ord(m.group()):02x}"
-                  if ord(m.group()) < 256 else f"\\u{ord(m.group()):04x}", text)
+                  if ord(m.group()) < 256 else f"\\u{ord(m.group()):04x}" if ord(m.group()) < 0x10000
+                  else f"\\U{ord(m.group()):08x}", text)
     return text if len(text) <= limit else text[:limit - 1] + "…"
 
 

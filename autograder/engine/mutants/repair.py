@@ -57,9 +57,12 @@ VARIANT_TIMEOUT = 1.0     # seconds for one variant on its inputs (one request),
 MISTAKE = "repair:"       # + the operator: a mistake named by a change of the student's code
 _SHOWN = 70               # the longest code shown before and after a change
 # The operators' reading is not linear in a function's size (each name against every local before
-# it): a module larger than a few times the largest lab's (3.4k nodes) is not changed at all, so
-# reading it never outlasts the time the repairs are given.
+# it): a module larger than a few times the largest lab's (3.4k nodes) is not changed at all, and a
+# function running a def larger than three times the largest measured in students' and course code
+# (628 nodes; 1,080 lines of one def took 29 s to read, the grader's own time, before any clock could
+# stop it) has no changes tried, so reading it never outlasts the time the repairs are given.
 MAX_NODES = 15_000
+MAX_DEF_NODES = 2_000
 _EXCHANGES = {"swap_operands", "swap_args", "stack_order"}   # operators that exchange two things
 _IN_WORDS = _MOVES | {"grey", "guard", "branch", "keep_parameter", "add_step"}   # changes told in words (their code would be too long to show)
 
@@ -507,6 +510,8 @@ class _Student:
     def mutants(self, function: str) -> list:
         """The operators' changes of the code ``function`` runs (made at its first failure: a long
         module's every function would take seconds)."""
+        if function not in self._mutants and not self.readable(function):
+            self._mutants[function] = []
         if function not in self._mutants:
             made = mutants_of(self.text, self.api, phrased=False, functions={function}) if function in self.api else {}
             # (and the statements written as the reference's but for a slip, made its again: see aligned.py)
@@ -517,6 +522,10 @@ class _Student:
                 aligned = []
             self._mutants[function] = aligned + made.get(function, [])
         return self._mutants[function]
+
+    def readable(self, function: str) -> bool:
+        """Whether every def ``function`` runs is within :data:`MAX_DEF_NODES` (changes of it are read in time)."""
+        return all(sum(1 for _ in ast.walk(self._defs[name])) <= MAX_DEF_NODES for name in runs(self._defs, function))
 
     def shared(self, where: str, function: str) -> bool:
         """Whether the def ``where`` (not ``function`` itself) is run by another graded function too."""

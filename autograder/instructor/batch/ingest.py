@@ -211,6 +211,7 @@ def read_upload(path, modules: list[str], every_module: list[str] = (),
             _read_report(entry, names, reader)
             _make_safe(entry)
     _assign_ids(upload.entries, known or Identities())
+    _names_told_apart(upload.entries)
     upload.warnings += _shared_identities(upload.entries)
     upload.entries.sort(key=lambda e: e.student_id)
     return upload
@@ -751,6 +752,19 @@ def _assign_ids(entries: list[Entry], known: Identities) -> None:
                 candidate = f"{base[:72]}-{number}"
             taken.add(candidate)
             entry.student_id = candidate
+
+
+def _names_told_apart(entries: list[Entry]) -> None:
+    """Names several entries show alike (two students called Wei Zhang; ``bob`` and ``bob`` with an invisible
+    character, made safe to the same name) followed by each one's id, so that no two rows of a page or an export
+    read as one student."""
+    shown_by: dict[str, list[Entry]] = {}
+    for entry in entries:
+        shown_by.setdefault(entry.display_name.casefold(), []).append(entry)
+    for group in shown_by.values():
+        if len(group) > 1:
+            for entry in group:
+                entry.display_name = f"{entry.display_name} ({entry.student_id})"
 
 
 def _shared_identities(entries: list[Entry]) -> list[str]:
