@@ -763,8 +763,9 @@ def _names_told_apart(entries: list[Entry]) -> None:
         shown_by.setdefault(entry.display_name.casefold(), []).append(entry)
     for group in shown_by.values():
         if len(group) > 1:
-            for entry in group:
-                entry.display_name = f"{entry.display_name} ({entry.student_id})"
+            for entry in group:   # (within the names' bound: the id is what tells them apart)
+                told = f" ({entry.student_id[:NAME_LENGTH // 2]})"
+                entry.display_name = one_line(entry.display_name, max(1, NAME_LENGTH - len(told))) + told
 
 
 def _shared_identities(entries: list[Entry]) -> list[str]:
