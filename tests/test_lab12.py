@@ -254,6 +254,27 @@ def test_correct_variants_keep_full_marks(tmp_path, case):
         assert check.passed, f"{check.name}: {check.message}"
 
 
+@pytest.mark.parametrize("at_nan, passes", [("np.nan", True), ("-1.0", True), ("0.0", True), ("np.inf", False),
+                                             ("1.0", False)])
+def test_a_nan_disparity_may_have_any_invalid_depth(tmp_path, at_nan, passes):
+    """The API's ex2 asks 0 where d <= 0 and nothing of a NaN disparity (no match), and its conventions call a depth
+    <= 0 or NaN invalid: NaN kept as NaN lost 2 points (third-party round of 2026-12-07, a probe of 0 where d <= 0).
+    A positive or infinite depth there is still a depth where there is none."""
+    result = grade(mutant(tmp_path, MODULE, f"""
+        def depth_from_disparity(disparity, f, baseline):
+            d = np.asarray(disparity, dtype=float)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                z = np.where(d > 0, f * baseline / d, 0.0)
+            return np.where(np.isnan(d), {at_nan}, z)
+        """), ["lab12.ex2"], pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab12.ex2") if c.score < c.max_score]
+    if passes:
+        assert not failed, [c.message for c in failed]
+    else:
+        assert [c.name for c in failed] == ["depth_from_disparity gives 0 for invalid disparities (<= 0 or NaN)"]
+        assert "A NaN disparity (no match) has no depth" in failed[0].message, failed[0].message
+
+
 def test_a_disparity_map_written_into_loses_one_check_though_a_second_call_agrees(tmp_path):
     """The sheet shows the disparity map beside the depth computed from it (inplace.shown_after):
     inf written into the caller's invalid entries (f b / inf = 0, the depths right, a second call on

@@ -797,12 +797,14 @@ MATCHES_DROPPED = "matches off each other's row are dropped"
 
 
 def _invalid_depths(got, disparity) -> list[str]:
-    """What ``got`` holds where the disparity is invalid, per kind (0, negative, NaN), in words."""
+    """What ``got`` holds where the disparity is invalid, per kind (0, negative, NaN), in words: a depth other than 0
+    where d <= 0 (the API's ex2), other than an invalid depth -- 0, below 0 or NaN, the API's conventions -- where d is
+    NaN (no match: the API asks nothing more of it)."""
     kinds = (("0", disparity == 0), ("negative", disparity < 0), ("NaN", np.isnan(disparity)))
     found = []
     for kind, where in kinds:
         values = got[where]
-        wrong = values[values != 0]
+        wrong = values[~((values <= 0) | np.isnan(values))] if kind == "NaN" else values[values != 0]
         if wrong.size == 0:
             continue
         value = wrong[0]
@@ -828,9 +830,13 @@ def judge_depth(t: Trial, what: str, got, disparity, f, baseline):
     with np.errstate(invalid="ignore"):
         wrong = _invalid_depths(np.asarray(got, dtype=np.float64), disparity)
     if wrong:
-        t.fail(f"{what}: " + "; ".join(wrong) + ". The depth there must be 0 (invalid): no point "
-               "of the scene has d <= 0.",
+        nan_only = all(w.startswith("where the disparity is NaN") for w in wrong)
+        t.fail(f"{what}: " + "; ".join(wrong) + (
+               ". A NaN disparity (no match) has no depth: it is invalid there too, 0 (or NaN)." if nan_only else
+               ". The depth there must be 0 (invalid): no point of the scene has d <= 0."),
                hint=GUARDED_DIVISION_HINT.said(t))
+    if np.isnan(disparity).any() and np.asarray(got).dtype.kind == "f":
+        got = np.where(np.isnan(disparity), 0, got).astype(np.asarray(got).dtype)   # (judged above: 0 or NaN there)
     if not np.all(np.isfinite(got)):
         t.fail(f"{what} returned NaN or infinite depths for valid disparities")
     scale = magnitude(expected)
