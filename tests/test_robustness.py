@@ -1,5 +1,6 @@
 """A broken or hostile submission costs only its own exercise, with a clear message."""
 
+import importlib.util
 import json
 
 import pytest
@@ -7,6 +8,7 @@ import pytest
 from autograder.engine.results import without_timings
 from autograder.engine.runner import grade
 from autograder.sandbox.supervisor import Limits
+from autograder.sandbox import confine
 from conftest import REFERENCE, ROOT, assert_only_exercise_lost, check_results, mutant, submission_from_source
 
 MODULE = "lab07_transformations"
@@ -103,6 +105,21 @@ def test_a_file_importing_another_labs_module_handed_in_alone_is_told_to_hand_in
     (tmp_path / "lab08_homographies.py").write_text("import lab99_nowhere\n" + reused)
     unknown = grade(tmp_path, ["lab08.ex1"], limits=FAST).exercises[0].message
     assert "No module named 'lab99_nowhere'" in unknown and "hand it in" not in unknown
+
+
+@pytest.mark.skipif(not confine.detect().hides_files, reason="the process-group level sees every installed library")
+def test_a_library_the_sandbox_does_not_offer_is_told_with_what_it_offers(tmp_path):
+    """`from tqdm import tqdm` (installed beside the grader, pinned in constraints.txt) made a whole lab 0 with only
+    "No module named 'tqdm'" (third-party round of 2026-12-07): the message says what graded code may import, and
+    that the library being installed where the grader runs changes nothing; a library nowhere, alike."""
+    reference = (REFERENCE / f"{MODULE}.py").read_text()
+    for name in ("tqdm", "surely_not_a_library"):
+        installed = importlib.util.find_spec(name) is not None
+        (tmp_path / f"{MODULE}.py").write_text(f"import {name}\n" + reference)
+        message = grade(tmp_path, ["lab07.ex1"], limits=FAST).exercises[0].message
+        assert f"No module named '{name}'" in message and "graded code may import Python's standard library, NumPy, " \
+            "OpenCV (cv2), SciPy, scikit-image and Matplotlib only" in message, message
+        assert ("is installed where the grader runs" in message) == installed, message
 
 
 def test_infinite_loop_at_import(tmp_path):

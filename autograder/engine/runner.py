@@ -871,8 +871,30 @@ def _import(sandbox: Sandbox, module: str, submission) -> CallOutcome:
         if where:
             outcome = replace(outcome, message=f"{outcome.message}\n  at {where}")
     if not outcome.ok and outcome.kind == "import_error":
-        outcome = replace(outcome, message=outcome.message + _another_labs_module(outcome.message, module))
+        outcome = replace(outcome, message=outcome.message + (_another_labs_module(outcome.message, module)
+                                                              or _library_not_offered(outcome.message, sandbox)))
     return outcome
+
+
+def _library_not_offered(message: str, sandbox: Sandbox) -> str:
+    """Where graded code imports a library the sandbox does not offer (a progress bar's ``tqdm``, ``pandas``): what it
+    does offer, and that the library being installed where the grader runs changes nothing; else ""."""
+    import importlib.util
+    import sys
+
+    from ..sandbox.confine import OFFERED
+
+    missing = re.search(r"No module named '([A-Za-z_][A-Za-z0-9_]*)", message)
+    if missing is None or not sandbox.confinement.hides_files or missing.group(1) in sys.stdlib_module_names:
+        return ""
+    name = missing.group(1)
+    try:
+        installed = importlib.util.find_spec(name) is not None   # (a top-level name: found, never imported)
+    except (ImportError, ValueError):
+        installed = False
+    here = f" ({name} is installed where the grader runs, but graded code does not see it)" if installed else ""
+    return "\n  " + measured(f"graded code may import {OFFERED} only{here}: take the import of {name} out, "
+                             "or write what it did with those")
 
 
 def _another_labs_module(message: str, module: str) -> str:

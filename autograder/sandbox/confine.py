@@ -70,6 +70,8 @@ _PR_SET_CHILD_SUBREAPER = 36
 # workers that read PDF reports (autograder.sandbox.report_reader: never in the grader's process).
 ALLOWED_LIBRARIES = ("numpy", "opencv-python", "opencv-python-headless", "opencv-contrib-python",
                      "opencv-contrib-python-headless", "matplotlib", "scipy", "scikit-image", "pypdf")
+# The same, as a student imports them (told where graded code imports another library).
+OFFERED = "Python's standard library, NumPy, OpenCV (cv2), SciPy, scikit-image and Matplotlib"
 # System folders bound read-only (programs and shared libraries), and the few
 # files of /etc the dynamic loader and the C library read.
 SYSTEM_FOLDERS = ("/usr", "/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32")
