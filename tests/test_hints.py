@@ -437,3 +437,32 @@ def test_a_step_under_a_condition_is_found_only_where_it_is_never_made_unconditi
             return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
         """)).body[0]
     assert step_under_a_condition([always], is_diag) is None
+
+
+def test_points_normalised_by_their_spread_are_not_told_to_normalise(tmp_path):
+    """An 8-point algorithm centring the points and scaling each axis by 1 / np.std, then fixing F[2, 2] = 1 and
+    solving by least squares, was told "check ... that the points are normalised first (Hartley)" (third-party
+    round of 2026-12-07): a normalisation by the spread is one; the checklist leaves it out."""
+    result = grade(mutant(tmp_path, "lab11_two_view", """
+        def _spread_normalised(points):
+            points = np.asarray(points, dtype=np.float64)
+            centre = np.mean(points, axis=0)
+            scale = 1.0 / np.std(points - centre, axis=0)
+            T = np.array([[scale[0], 0, -scale[0] * centre[0]], [0, scale[1], -scale[1] * centre[1]], [0, 0, 1]])
+            return (points - centre) * scale, T
+
+        def fundamental_8point(pts1, pts2):
+            p1, T1 = _spread_normalised(pts1)
+            p2, T2 = _spread_normalised(pts2)
+            x1, y1, x2, y2 = p1[:, 0], p1[:, 1], p2[:, 0], p2[:, 1]
+            A = np.column_stack([x2 * x1, x2 * y1, x2, y2 * x1, y2 * y1, y2, x1, y1])
+            f = np.linalg.lstsq(A, -np.ones(len(p1)), rcond=None)[0]
+            F = np.append(f, 1.0).reshape(3, 3)
+            U, s, Vt = np.linalg.svd(F)
+            F = U @ np.diag([s[0], s[1], 0.0]) @ Vt
+            F = T2.T @ F @ T1
+            return F / np.linalg.norm(F)
+        """), ["lab11.ex4"], pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab11.ex4") if c.score < c.max_score]
+    assert failed
+    assert not any("normalised first" in c.hint + c.message for c in failed), [c.hint for c in failed]
