@@ -466,3 +466,20 @@ def test_points_normalised_by_their_spread_are_not_told_to_normalise(tmp_path):
     failed = [c for c in check_results(result, "lab11.ex4") if c.score < c.max_score]
     assert failed
     assert not any("normalised first" in c.hint + c.message for c in failed), [c.hint for c in failed]
+
+
+def test_a_centre_computed_through_an_inverse_is_not_told_to_be_minus_r_transpose_t(tmp_path, monkeypatch):
+    """`C2 = -np.linalg.inv(K2 @ R) @ (K2 @ T)`, the textbook's centre of a camera K [R | t], is -R^T T: a rectify
+    computing it so, its axes stacked as columns, was told "check that camera 2's centre is -R^T T, not T"
+    (third-party round of 2026-12-07). (The fixed hint itself: a change found of the code would take its place.)"""
+    from autograder.engine import runner
+
+    monkeypatch.setattr(runner, "_named_by_repair", lambda verdict, *args, **kwargs: verdict)
+    monkeypatch.setattr(runner, "_named_by_error_model", lambda verdict, *args, **kwargs: verdict)
+    result = grade(edited_reference(tmp_path, "lab12_stereo", ("C2 = -R.T @ T", "C2 = -np.linalg.inv(K2 @ R) @ (K2 @ T)"),
+                                    ("R_rect = np.vstack([e1, e2, e3])", "R_rect = np.column_stack([e1, e2, e3])")),
+                   ["lab12.ex3"], pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab12.ex3") if c.score < c.max_score]
+    assert failed
+    assert not any("-R^T T, not T" in c.hint + c.message for c in failed), [c.hint for c in failed]
+    assert any("your code computes camera 2's centre -R^T T" in c.hint for c in failed), [c.hint for c in failed]

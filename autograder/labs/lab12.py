@@ -1221,8 +1221,10 @@ def _shared_by_products(function) -> bool:
 
 
 # Code that computes the centre -R^T T is not told it (the rest of the recipe is a checklist).
+# (or through an inverse: c = -(K R)^-1 (K t), the textbook's centre of a camera K [R | t], is -R^T t)
 CENTRE = (expr("-R.T @ T") | expr("-_.T @ _") | expr("-(_.T @ _)") | expr("-np.dot(_.T, _)")
-          | expr("-_.T.dot(_)") | expr("_.T @ -_")).saying("computes camera 2's centre -R^T T")
+          | expr("-_.T.dot(_)") | expr("_.T @ -_") | expr("-np.linalg.inv(_) @ _") | expr("-(np.linalg.inv(_) @ _)")
+          | expr("np.linalg.inv(_) @ -_") | expr("-np.linalg.solve(_, _)")).saying("computes camera 2's centre -R^T T")
 BASELINE_AXIS = (expr("_ / np.linalg.norm(_)") | calls("np.linalg.norm")).saying("divides the baseline by its length")
 AXES_AS_COLUMNS = (calls("np.column_stack") | keyword("np.stack", "axis", 1) | keyword("np.stack", "axis", -1)
                    | expr("np.array([_, _, _]).T") | expr("np.vstack([_, _, _]).T") | expr("np.stack([_, _, _]).T")
