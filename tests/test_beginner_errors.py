@@ -10,6 +10,8 @@ code does with OpenCV (results, caught errors, forbidden functions) is unchanged
 
 from __future__ import annotations
 
+import textwrap
+
 import cv2
 import numpy as np
 import pytest
@@ -430,3 +432,29 @@ def test_a_depth_opencv_does_not_take_is_told_with_the_ones_it_does():
 def test_a_grey_array_is_not_told_to_be_converted_from_colour():
     said = sentence("distanceTransform", np.zeros((40, 60)), cv2.DIST_L2, 3)
     assert "cvtColor" not in said and "astype(np.uint8)" in said, said
+
+
+def test_an_image_indexed_one_index_after_the_other_reads_as_y_x():
+    """`canvas[i][j]` over `range(image.shape[0])` and `range(image.shape[1])` indexes rows first, as `canvas[i, j]`
+    does: an IndexError from a loop over another image's rows was told "index it as image[y, x]" (third-party round
+    of 2026-12-07). Indexed [x][y], or [x, y], it is not read so."""
+    import ast
+
+    from autograder.engine.forms import INDEXES_Y_X
+
+    def reads(source):
+        return INDEXES_Y_X.holds([ast.parse(textwrap.dedent(source)).body[0]])
+
+    assert reads("""
+        def blend(canvas, image):
+            for i in range(image.shape[0]):
+                for j in range(image.shape[1]):
+                    canvas[i][j] = image[i][j]
+        """)
+    assert not reads("""
+        def blend(canvas, image):
+            for x in range(image.shape[1]):
+                for y in range(image.shape[0]):
+                    canvas[x][y] = image[y, x]
+        """)
+    assert not reads("def f(a, i, j):\n    return a[i:j][0]\n")

@@ -56,10 +56,18 @@ _COLUMN_NAME = re.compile(r"^(?:x|xx|col|cols|column|c|u|j|left|right)(?:_?\d*|_
 
 def _index_pairs(function):
     """The (first, second) names leading each two-index subscript of ``function`` (``img[y + 1, x]``
-    gives ``("y", "x")``; an index with no name gives ``""``)."""
+    gives ``("y", "x")``, and so does ``img[y][x]``, one index after the other; an index with no name gives ``""``)."""
+    def leading(index) -> str:
+        return next((n.id for n in ast.walk(index) if isinstance(n, ast.Name)), "")
+
     for node in ast.walk(function):
         if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2:
-            yield tuple(next((n.id for n in ast.walk(e) if isinstance(n, ast.Name)), "") for e in node.slice.elts)
+            yield tuple(leading(e) for e in node.slice.elts)
+        elif isinstance(node, ast.Subscript) and isinstance(node.value, ast.Subscript) \
+                and not isinstance(node.slice, (ast.Tuple, ast.Slice)) \
+                and not isinstance(node.value.slice, (ast.Tuple, ast.Slice)) \
+                and not isinstance(node.value.value, ast.Subscript):
+            yield leading(node.value.slice), leading(node.slice)
 
 
 def _indexes(first: re.Pattern, second: re.Pattern):
