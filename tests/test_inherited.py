@@ -382,3 +382,39 @@ def _compose(a):
 """)
     assert inherited.private_helpers(code, "stitch", {"stitch", "match_features"}) == {"_compose"}
     assert inherited.private_helpers(code, "match_features", {"stitch", "match_features"}) == {"_detect", "_grey"}
+
+
+def test_a_function_right_itself_is_no_evidence_against_the_helpers_it_shares(tmp_path):
+    """`rotate` told right itself on a check (its `rotation_matrix` wrong there; its own slip, whole degrees, fails
+    another) and `warp_affine` ignoring dsize,
+    both through the private `_warp`: warp_affine's failure was told "a mistake in `_warp` would fail this check as
+    well" because rotate failed other checks (third-party round of 2026-12-07) -- a false lead. A function told right
+    itself is not counted as failing for the helpers it shares."""
+    from autograder.engine.runner import grade
+    from conftest import check_results, mutant
+
+    folder = mutant(tmp_path, "lab07_transformations", """
+        def _turn(angle_deg):
+            theta = np.deg2rad(angle_deg)
+            return np.array([[np.cos(theta), -np.sin(theta)], [np.sin(theta), np.cos(theta)]])
+
+        def rotation_matrix(angle_deg, center=(0.0, 0.0)):
+            R, c = _turn(angle_deg), np.asarray(center, dtype=np.float64)
+            M = np.eye(3)
+            M[:2, :2], M[:2, 2] = R, c - R @ c
+            return M
+
+        def rotate(image, angle_deg=45):
+            height, width = image.shape[:2]
+            centre = np.array([(width - 1) / 2.0, (height - 1) / 2.0])
+            return _warp(image, rotation_matrix(round(angle_deg), centre))   # (a slip of its own: whole degrees)
+
+        def warp_affine(image, A, dsize=None):
+            return _warp(image, A)
+        """)
+    result = grade(folder, ["lab07.ex2", "lab07.ex5"], pictures="none", include_hidden=False)
+    rotating = [c for c in check_results(result, "lab07.ex2") if c.score < c.max_score]
+    warping = [c for c in check_results(result, "lab07.ex5") if c.score < c.max_score]
+    assert any(c.message.startswith(f"Your `rotate` {ITSELF_RIGHT}") for c in rotating), [c.message for c in rotating]
+    assert any(not c.message.startswith(f"Your `rotate` {ITSELF_RIGHT}") for c in rotating if c.name.startswith("rotate"))
+    assert warping and not any("which your `rotate` uses too" in c.message for c in warping), [c.message for c in warping]

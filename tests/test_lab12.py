@@ -428,3 +428,14 @@ def test_an_ssd_of_normalised_images_beside_an_uncentred_ncc_is_not_told_the_cos
     result = grade(folder, ["lab12.ext1"], pictures="none", include_hidden=False)
     failed = [c for c in check_results(result, "lab12.ext1") if c.score < c.max_score]
     assert failed and not any("costs are swapped" in c.message for c in failed), [c.message for c in failed]
+
+
+def test_a_block_matcher_ignoring_cost_earns_none_of_the_ncc_extension(tmp_path):
+    """cost="ncc" answered by the SSD matching earned 4 of the extension's 8 points where SSD's map is as good as NCC's
+    (the motorcycle, a flat border: third-party round of 2026-12-07). On a pair where the two costs disagree it gives
+    exactly SSD's map: every check of the extension fails, saying so; the base exercise keeps its points."""
+    result = grade(edited_reference(tmp_path, MODULE, ('(_ssd_volume if cost == "ssd" else _ncc_volume)(', '_ssd_volume(')),
+                   ["lab12.ex4", "lab12.ext1"], pictures="none", include_hidden=False)
+    scores = {e.id: (e.score, e.max_score) for e in result.exercises}
+    assert scores["lab12.ex4"][0] == scores["lab12.ex4"][1] and scores["lab12.ext1"][0] == 0, scores
+    assert any("NCC is not computed, and the extension is NCC" in c.message for c in check_results(result, "lab12.ext1"))

@@ -79,6 +79,7 @@ FLOAT_RELATIVE = 1e-6     # float entries: this much of their magnitude (float32
 INHERITED = "inherited"   # a decision: the failure comes from the callees
 OWN = "own"               # the function itself is wrong (or its callees are right)
 SHARED_FAILING = "inherited: functions failing their own checks"
+SHARED_RIGHT_ITSELF = "inherited: functions told right but for a function they call"
 SHARED_SECONDS = "inherited: seconds"
 
 
@@ -463,13 +464,17 @@ def told(verdict, trial):
         # (a property's failing input) stays
         rest = str(verdict.message).partition("\n")[2]
         message = inherited_sentence(decision, failing) + ("\n" + rest if rest else "")
+        trial.sandbox.shared.setdefault((SHARED_RIGHT_ITSELF, trial.lab.module), set()).add(function)
         return replace(verdict, message=message, hint="", mistake=""), True
     failing.add(function)
     depends = sorted(callees & failing)
+    # (a function found right itself where it failed -- its callee's answers wrong -- says nothing of the helpers it
+    # shares: `rotate` right but for `rotation_matrix`'s sign was no evidence against `_apply`)
+    suspects = failing - {function} - trial.sandbox.shared.get((SHARED_RIGHT_ITSELF, trial.lab.module), set())
     if depends:
         verdict = replace(verdict, message=f"{str(verdict.message).rstrip()}\n{dependency_sentence(function, depends)}")
-    elif code.functions and failing - {function}:
-        verdict = _shared_with_failing(verdict, code, function, failing - {function}, _api(trial.lab))
+    elif code.functions and suspects:
+        verdict = _shared_with_failing(verdict, code, function, suspects, _api(trial.lab))
     return verdict, False
 
 

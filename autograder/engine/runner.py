@@ -714,7 +714,7 @@ def _public_memory_to(fresh: list, public: list) -> None:
     that called each function (their inputs are public), the functions failing their own checks, the
     calls seen and the changes told. Copies, one way: what a hidden check adds never reaches a public worker's, and
     the public phase has ended."""
-    from .inherited import SHARED_FAILING
+    from .inherited import SHARED_FAILING, SHARED_RIGHT_ITSELF
     from .mutants.repair import TOLD_BESIDE
 
     for sandbox in fresh:
@@ -723,7 +723,7 @@ def _public_memory_to(fresh: list, public: list) -> None:
                 if isinstance(key, tuple) and key[0] == "checks calling":
                     kept = sandbox.shared.setdefault(key, [])
                     kept += [entry for entry in value if all(entry[0] is not mine[0] for mine in kept)]
-                elif isinstance(key, tuple) and key[0] == SHARED_FAILING:
+                elif isinstance(key, tuple) and key[0] in (SHARED_FAILING, SHARED_RIGHT_ITSELF):
                     sandbox.shared.setdefault(key, set()).update(value)
                 elif key == "repair seen":
                     for function, calls in value.items():

@@ -2046,24 +2046,16 @@ def block_matching_uses_cost(t):
     cannot see a default that runs NCC (it matches as well): on the slanted plane with its right image at 40% of
     its brightness (the two costs' maps differ at about half the pixels there, at 2% on random dots) the two
     maps must differ. Where cost="ncc" is not written yet, the extension's checks say so."""
-    scene = truth.scene("slanted")
-    brighter = np.clip(np.asarray(scene.right, np.float64) * 0.4, 0, 255).astype(np.uint8)
     what = "block_matching(left, right at 40% brightness, cost=...)"
-    ssd = t.call("block_matching", np.array(scene.left), brighter, max_disparity=scene.max_disparity, cost="ssd")
+    _dimmed_map(t, "ssd")   # (the default cost's failure is this check's)
     try:
-        ncc = t.call("block_matching", np.array(scene.left), brighter, max_disparity=scene.max_disparity, cost="ncc")
+        _dimmed_map(t, "ncc")
     except StudentFailure:
         return passed("cost=\"ncc\" is not answered: the extension's checks judge it")
-    shape = np.shape(scene.disparity)
-    if not all(isinstance(m, np.ndarray) and m.shape == shape and m.dtype.kind in "biuf" for m in (ssd, ncc)):
+    near = _one_map_for_both_costs(t)
+    if near is None:
         return passed("the maps' form is judged by the check of block_matching's answer")
-    if same_informative_result(ssd, ncc):
-        # (which cost the one map is: SSD for both is NCC not written -- the extension's to judge --, NCC for both
-        # is the default not what it names, this exercise's)
-        gained = replace(scene, right=brighter)
-        near = {cost: float(np.mean(np.abs(np.nan_to_num(np.asarray(ssd, np.float64)) - truth.winner_take_all(
-            gained, 9, cost)) <= 1)) for cost in ("ssd", "ncc")}
-        # (and clearly NCC's: a wrong SSD map ignoring cost is near neither -- the other checks say what it is)
+    if near:
         if near["ncc"] >= 0.9 and near["ncc"] > near["ssd"] + 0.2:
             capitals = any(isinstance(node, ast.Constant) and node.value in ("SSD", "NCC")
                            for function in code_of(t).reachable(["block_matching"]) for node in ast.walk(function))
@@ -2075,6 +2067,52 @@ def block_matching_uses_cost(t):
                       if capitals else ""), mistake="cost is ignored")
         return passed("cost=\"ncc\" gives the same map as cost=\"ssd\", not NCC's: the extension's checks judge it")
     return passed("cost=\"ssd\" and cost=\"ncc\" give different maps")
+
+
+def _dimmed_map(t: Trial, cost: str):
+    """block_matching(cost=``cost``) on the slanted plane with its right image at 40% of its brightness, where the two
+    costs' maps differ at about half the pixels: one call per grading, shared by the checks that compare them."""
+    scene = truth.scene("slanted")
+    brighter = _dimmed_pair_right(scene)
+    return t.shared(("block_matching", "slanted at 40%", cost), lambda: t.call(
+        "block_matching", np.array(scene.left), brighter, max_disparity=scene.max_disparity, cost=cost))
+
+
+def _one_map_for_both_costs(t: Trial) -> dict | bool | None:
+    """Whether cost="ssd" and cost="ncc" give one same informative map on the dimmed pair (:func:`_dimmed_map`): then
+    how near that map is to each cost's winner-take-all (``{"ssd": share, "ncc": share}`` of pixels within 1 px),
+    else False; None where a map is not of a disparity map's form. Raises the student's failure of either call."""
+    scene = truth.scene("slanted")
+    ssd, ncc = _dimmed_map(t, "ssd"), _dimmed_map(t, "ncc")
+    shape = np.shape(scene.disparity)
+    if not all(isinstance(m, np.ndarray) and m.shape == shape and m.dtype.kind in "biuf" for m in (ssd, ncc)):
+        return None
+    if not same_informative_result(ssd, ncc):
+        return False
+    # (which cost the one map is: SSD for both is NCC not written -- the extension's to judge --, NCC for both
+    # is the default not what it names, ex4's; and clearly NCC's: a wrong SSD map ignoring cost is near neither)
+    gained = replace(scene, right=_dimmed_pair_right(scene))
+    return {cost: float(np.mean(np.abs(np.nan_to_num(np.asarray(ssd, np.float64)) - truth.winner_take_all(
+        gained, 9, cost)) <= 1)) for cost in ("ssd", "ncc")}
+
+
+def _dimmed_pair_right(scene):
+    return np.clip(np.asarray(scene.right, np.float64) * 0.4, 0, 255).astype(np.uint8)
+
+
+def ncc_not_written(t: Trial) -> None:
+    """Fail an extension's check where cost="ncc" gives exactly cost="ssd"'s map on the dimmed pair, and that map is
+    not NCC's: the extension is NCC, and a map the SSD matching made earns none of its points (a block matcher
+    ignoring cost earned 4 of its 8 points where SSD's map is as good: third-party round of 2026-12-07)."""
+    try:
+        near = _one_map_for_both_costs(t)
+    except StudentFailure:
+        return   # (a call that failed: the check's own call says so)
+    if near and not (near["ncc"] >= 0.9 and near["ncc"] > near["ssd"] + 0.2):
+        t.fail(measured("block_matching(left, right at 40% brightness, cost=\"ncc\") gives exactly the map cost=\"ssd\" "
+                        "gives, on a pair where the two costs disagree at about half the pixels (a change of brightness "
+                        "changes SSD, not NCC): NCC is not computed, and the extension is NCC"),
+               hint=NCC_HINT.said(t), mistake="the cost argument is ignored")
 
 
 def judge_max_disparity_default(t: Trial, function: str):
@@ -2299,6 +2337,7 @@ ext1 = lab.exercise("ext1", "Normalised cross-correlation", functions=[
 def ncc_motorcycle(t):
     scene = truth.scene("motorcycle")
     got = ncc_motorcycle_map(t)
+    ncc_not_written(t)
     what = "block_matching(left, right, cost=\"ncc\")"
     verdict = judge_disparity(t, what, got, scene, figures("motorcycle", "bm_ncc_9")["bad"],
                               probe=block_size_probe(t, what, scene, cost="ncc"),
@@ -2448,6 +2487,7 @@ def ncc_flat_border(t):
                                                block_size=block, cost="ncc"), scene)
     got = expect_disparity(t, what, t.call("block_matching", flat_left, flat_right, max_disparity=max_disparity,
                                            block_size=block, cost="ncc"), scene)
+    ncc_not_written(t)
     # the left pixels whose own block and true match are textured (the scene's disparities are at most
     # its own search range) and whose search range reaches a block inside the strip
     first = FLAT_STRIP + block // 2 + scene.max_disparity
