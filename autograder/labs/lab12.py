@@ -2109,9 +2109,14 @@ def ncc_not_written(t: Trial) -> None:
     except StudentFailure:
         return   # (a call that failed: the check's own call says so)
     if near and not (near["ncc"] >= 0.9 and near["ncc"] > near["ssd"] + 0.2):
-        t.fail(measured("block_matching(left, right at 40% brightness, cost=\"ncc\") gives exactly the map cost=\"ssd\" "
+        said = measured("block_matching(left, right at 40% brightness, cost=\"ncc\") gives exactly the map cost=\"ssd\" "
                         "gives, on a pair where the two costs disagree at about half the pixels (a change of brightness "
-                        "changes SSD, not NCC): NCC is not computed, and the extension is NCC"),
+                        "changes SSD, not NCC)")
+        fn = code_of(t).functions.get("block_matching")
+        if fn is not None and "cost" not in never_read(fn):   # (read, and both costs come out one map: see ncc_gain)
+            t.fail(said + from_code(": your block_matching reads cost, yet NCC is not computed, and the extension is "
+                                    "NCC -- look at what each cost's branch computes"), hint=NCC_HINT.said(t))
+        t.fail(said + ": the cost argument is ignored, so NCC is not computed, and the extension is NCC.",
                hint=NCC_HINT.said(t), mistake="the cost argument is ignored")
 
 
