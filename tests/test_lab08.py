@@ -380,23 +380,16 @@ def test_a_loop_over_part_of_the_images_is_not_every_image(iterable, part):
 
 
 def test_a_ransac_without_refit_is_not_told_to_draw_more_samples_or_keep_the_best(tmp_path):
-    """A RANSAC that draws 500 samples and keeps the best model's inliers, but refits H on the first 8 of them, was told
+    """A RANSAC that draws 500 samples and keeps the best model's inliers, but fits H on the first 8 of them, was told
     "draw enough samples ..., keep the H with the most inliers, then refit on them" by the 50%-outlier check
     (third-party round of 2026-12-07: 1000 samples drawn, the best sample's H returned): where its mask is right on
     every seed that failed and a DLT on the pairs it marks is right, the check says so and asks for the refit alone."""
-    result = grade(mutant(tmp_path, MODULE, """
-        def homography_ransac(src, dst, threshold=3.0, seed=None):
-            src = np.asarray(src, float); dst = np.asarray(dst, float)
-            rng = np.random.default_rng(seed)
-            best, best_count = None, -1
-            for _ in range(500):
-                idx = rng.choice(len(src), 4, replace=False)
-                H = homography_dlt(src[idx], dst[idx])
-                inliers = np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
-                if inliers.sum() > best_count:
-                    best, best_count = inliers, inliers.sum()
-            return homography_dlt(src[best][:8], dst[best][:8]), best   # (the first 8 inliers only)
-        """), ["lab08.ex4"], pictures="none", include_hidden=False)
+    _, unrefitted, _ = MISTAKES["RANSAC without the final refit"]
+    last = "            return best, np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold\n"
+    assert last in unrefitted
+    first_eight = unrefitted.replace(last, "            inliers = np.linalg.norm(transform_points(best, src) - dst, axis=1) < threshold\n"
+                                           "            return homography_dlt(src[inliers][:8], dst[inliers][:8]), inliers\n")
+    result = grade(mutant(tmp_path, MODULE, first_eight), ["lab08.ex4"], pictures="none", include_hidden=False)
     [seeds] = [c for c in check_results(result, "lab08.ex4") if c.name.startswith("homography_ransac with 50% outliers")]
     assert not seeds.passed
     assert "the H returned is not the one its inliers give" in seeds.message, seeds.message
