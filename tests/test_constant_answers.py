@@ -35,3 +35,19 @@ def test_answers_alike_up_to_scale_and_sign_are_one_answer():
     F = E + np.diag([1.0, 2.0, 3.0])
     assert _differ(F, F.T) and _differ(E, E[:2]) and _differ([E], [E, E])
     assert not _differ(np.array([np.nan, 1.0]), np.array([np.nan, 2.0]))
+
+
+def test_a_large_answer_is_compared_by_a_sample_of_its_entries():
+    """The gate holds a sample of a large answer, never the whole (an image per function, a stack of patterns): alike
+    answers are alike in it, answers that differ anywhere much differ in it, and another shape is another answer."""
+    from autograder.engine.constant import ALIKE, SAMPLE, _sampled
+    from autograder.engine.inplace import same_answer
+
+    image = np.random.default_rng(0).uniform(0, 255, (480, 640))
+    kept = _sampled(image)
+    assert kept[0] == image.shape and kept[1].size <= SAMPLE
+    assert same_answer(_sampled(image + 1e-9), kept, ALIKE)
+    assert not same_answer(_sampled(image[::-1]), kept, ALIKE)
+    assert not same_answer(_sampled(image.reshape(640, 480)), kept, ALIKE)
+    small = (np.eye(3), np.ones(5))
+    assert _sampled(small) == small or all(a is b for a, b in zip(_sampled(small), small))
