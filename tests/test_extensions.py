@@ -64,6 +64,21 @@ def test_excused_work_counts_for_nothing_and_is_told_so(tmp_path):
     assert [row[-1] for row in canvas[2:]] == ["EX", "10"]
 
 
+@pytest.mark.parametrize("named_by", ["s005", "zoe@uni.edu", "Zoe Ng"])
+def test_a_roster_student_with_nothing_handed_in_can_be_excused(tmp_path, named_by):
+    """A roster's student who handed nothing in, excused by id, e-mail or name: "names no student; ignored" and an
+    empty Canvas cell until the first-time user's audit of 2026-12-07; Canvas's EX now, and no warning."""
+    config = course(extensions={named_by: {"excused": True}})
+    roster = [{"student_id": "s005", "name": "Zoe Ng", "email": "zoe@uni.edu", "canvas_user_id": "1005"}]
+    grades, warnings = compute_grades([student("bo", "2026-03-01T20:00:00+00:00")], EXERCISES, config, roster=roster)
+    assert warnings == [], warnings
+    [zoe] = [g for g in grades if g.student["student_id"] == "s005"]
+    assert zoe.excused and _status(zoe) == "excused"
+    write_csvs(tmp_path, grades, EXERCISES, config, roster_given=True)
+    canvas = {row[0]: row[-1] for row in csv.reader((tmp_path / "canvas_import.csv").open())}
+    assert canvas["Zoe Ng"] == "EX" and canvas["bo"] == "10"
+
+
 def test_an_extension_naming_nobody_or_several_is_refused_with_a_warning():
     config = course(extensions={"zed": {"days": 1}, "Ann Lee": {"days": 1}})
     grades, warnings = grades_of([student("ann", TWO_DAYS_LATE, name="Ann Lee"),

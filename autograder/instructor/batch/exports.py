@@ -319,7 +319,7 @@ def _extensions(course: CourseConfig, grades: list[StudentGrade], index) -> tupl
     download or roster knows, as overrides are; warnings for one naming nobody or several."""
     found, warnings = {}, []
     for who, extension in course.extensions.items():
-        named = _named_by(who, grades, index)
+        named = _named_by(who, grades, index, absent_too=True)
         if len(named) == 1:
             found[id(named[0])] = extension
         elif not named:
@@ -447,8 +447,15 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
         _add_reviews(grade, rubric, maxima, reviews)
         grades.append(grade)
     index = _identity_index(grades)
-    extensions, extension_warnings = _extensions(course, grades, index)
+    # (a roster's student with nothing handed in may be excused too: Canvas's EX, not an empty cell)
+    missing = [StudentGrade({"student_id": row.get("student_id", ""), "display_name": row.get("name", ""), "lms": {},
+                             "members": [], "status": "no submission", "reason": "", "result": None, "feedback": None},
+                            {e: None for e, _ in exercises}, roster=row) for row in absent]
+    extensions, extension_warnings = _extensions(course, grades + missing, _identity_index(grades + missing))
     warnings += extension_warnings
+    for grade in missing:
+        if extensions.get(id(grade), {}).get("excused"):
+            _late_rules(grade, {"excused": True}, course, ledger or {})
     for grade in grades:
         days = _late_rules(grade, extensions.get(id(grade), {}), course, ledger or {})
         if days and grade.graded:
@@ -474,11 +481,7 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
         else:
             _apply(candidates[0], o, warnings)
     warnings += _unreviewed(grades, maxima, reviews)
-    for row in absent:
-        stub = {"student_id": row.get("student_id", ""), "display_name": row.get("name", ""), "lms": {},
-                "members": [], "status": "no submission", "reason": "", "result": None, "feedback": None}
-        grades.append(StudentGrade(stub, {e: None for e, _ in exercises}, roster=row))
-    return grades, warnings
+    return grades + missing, warnings
 
 
 def _unreviewed(grades: list[StudentGrade], maxima: dict[str, float], reviews: dict) -> list[str]:
@@ -525,13 +528,14 @@ def _identity_index(grades: list[StudentGrade]) -> dict[str, list[StudentGrade]]
     return index
 
 
-def _named_by(who: str, grades: list[StudentGrade], index) -> list[StudentGrade]:
-    """The graded students an override's ``student`` names (a derived id is never ambiguous)."""
+def _named_by(who: str, grades: list[StudentGrade], index, absent_too: bool = False) -> list[StudentGrade]:
+    """The graded students an override's ``student`` names (a derived id is never ambiguous); ``absent_too``: and
+    the roster's students with nothing handed in (whom an extension may excuse)."""
     exact = [g for g in grades if g.student["student_id"] == who.strip()]
     if exact:
         return exact
     found = index.get(f"id:{who.strip().lower()}", []) + index.get(f"name:{_name_key(who)}", [])
-    unique = list({id(g): g for g in found if g.student["status"] != "no submission"}.values())
+    unique = list({id(g): g for g in found if absent_too or g.student["status"] != "no submission"}.values())
     return unique
 
 
