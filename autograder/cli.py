@@ -519,10 +519,14 @@ def run_batch(args) -> int:
                   f"(kept from the gradebook), {len(summary.failed)} failed, {len(summary.unreadable)} unreadable",
                   highlight=False)
     moved = len(summary.changes)
-    console.print(f"{moved} final grade{'s' if moved != 1 else ''} "
-                  + ("would change (a preview: nothing in " f"{args.out} changed; run the same command without "
-                     "--compare to apply)" if args.compare else "changed since the last run (changes.csv)"),
-                  highlight=False, markup=False)
+    if summary.first_run and not args.compare:   # (nothing graded before to compare with: no "0 changed")
+        console.print("the first run of this gradebook: the next runs say whose final grade changed (changes.csv)",
+                      highlight=False, markup=False)
+    else:
+        console.print(f"{moved} final grade{'s' if moved != 1 else ''} "
+                      + ("would change (a preview: nothing in " f"{args.out} changed; run the same command without "
+                         "--compare to apply)" if args.compare else "changed since the last run (changes.csv)"),
+                      highlight=False, markup=False)
     for title, lines in (("changed", [change.sentence() for change in summary.changes]),
                          ("unreadable", summary.unreadable), ("failed", summary.failed),
                          ("ignored", summary.ignored),
@@ -732,7 +736,8 @@ def check_label(name: str, hidden: bool) -> str:
 
 
 _NOT_APPLIED = {
-    "grade": "a single grading applies only what judges the code (select, limits, forbid, inputs)",
+    "grade": "a single grading applies only what judges the code (select, labs, hide, the time limits, forbid, "
+             "inputs_secret, hidden_points_visible)",
     "batch": "Gradescope's visibility settings apply only on Gradescope",
     "gradescope": "Gradescope applies its own late policy and exports (set them in the assignment's settings)",
 }

@@ -72,7 +72,8 @@ def test_compare_previews_the_changes_and_leaves_the_gradebook_alone(tmp_path):
     download, out = tmp_path / "download", tmp_path / "out"
     write(download / "ann" / f"{MODULE}.py", skeleton())
     write(download / "bo" / f"{MODULE}.py", reference())
-    run_batch(download, out, course=COURSE, workers=2)
+    first = run_batch(download, out, course=COURSE, workers=2)
+    assert first.first_run and first.changes == []   # (the CLI says so, not "0 final grades changed")
     before = {p.name: p.read_bytes() for p in out.rglob("*") if p.is_file() and p.suffix in (".csv", ".sqlite")}
 
     write(download / "ann" / f"{MODULE}.py", reference())
@@ -91,7 +92,7 @@ def test_compare_previews_the_changes_and_leaves_the_gradebook_alone(tmp_path):
 
     applied = subprocess.run(command[:-1], capture_output=True, text=True, timeout=600)
     assert applied.returncode == 0, applied.stderr
-    assert "1 final grade changed since the last run" in applied.stdout
+    assert "1 final grade changed since the last run" in applied.stdout and "the first run" not in applied.stdout
     assert changes_csv(out)["ann"]["After"] == "12"
 
 

@@ -86,6 +86,7 @@ class BatchSummary:
     warnings: list[str] = field(default_factory=list)
     files: list[Path] = field(default_factory=list)
     changes: list = field(default_factory=list)           # changes.Change: final grades this run moved
+    first_run: bool = False   # no earlier run's final grades to compare with
 
 
 @batch_process
@@ -211,6 +212,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
         before, _ = changes.recorded(book)
         now = changes.standings(standing.grades)
         standing.changes = summary.changes = changes.compare(before, now) if before is not None else []
+        summary.first_run = before is None
         changes.record(book, now, standing.changes)
         standing.latest_changes = changes.last_changes(book)
         book.check_in_place()   # not the exports of a gradebook that is gone
