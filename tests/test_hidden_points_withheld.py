@@ -79,3 +79,20 @@ def test_a_late_penalty_is_told_once_the_hidden_points_are_shown():
                                True, [])
     assert "-1" in shown and "10% of the points earned" in shown
     assert "shown when the hidden checks are released" in withheld and "<td>-1</td>" not in withheld
+
+
+def test_the_checks_passed_count_leaves_the_hidden_checks_apart_where_the_score_does():
+    """The student's table: a score without the hidden points beside "checks passed" counting the hidden checks
+    (`4 / 11 | 1 / 6` for 5 public checks and 1 hidden: first-time user's audit of 2026-12-07)."""
+    from rich.console import Console
+
+    from autograder.reports.terminal import render
+
+    result = grading([(0.0, 2.0), (1.0, 1.0)], [(True, 3.0, 0.0)])
+    view = result.for_students(False)
+    console = Console(width=200, record=True)
+    render(view, console, details=False)
+    assert "1 / 2 (hidden: 1 / 1)" in console.export_text()
+    console = Console(width=200, record=True)
+    render(result, console, details=False)   # (the instructor's view: the hidden points are in the score)
+    assert "2 / 3" in console.export_text()

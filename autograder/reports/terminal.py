@@ -40,11 +40,10 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
     table.add_column("score", justify="right")
     table.add_column("checks passed", justify="right")
     for exercise in result.exercises:
-        graded = [c for c in exercise.checks if _graded(c)]  # advice is not a check to pass
         table.add_row(exercise.id, exercise.title,
                       Text(f"{exercise.score:g} / {exercise.max_score:g}",
                            style=_score_style(exercise.score, exercise.max_score)),
-                      f"{sum(c.passed for c in graded)} / {len(graded)}")
+                      _checks_passed(exercise, result.hidden_points_withheld))
     table.add_section()
     table.add_row("total", "", Text(f"{result.total:g} / {result.max_total:g}",
                                     style=_score_style(result.total, result.max_total)), "")
@@ -74,6 +73,16 @@ def render(result: GradingResult, console: Console | None = None, html_path=None
                       "scores until your instructor releases them.[/dim]")
     if html_path:
         render_written(console, [("details and pictures", html_path)])
+
+
+def _checks_passed(exercise, hidden_apart: bool) -> str:
+    """The table's "checks passed" cell: passed / graded (advice is not a check to pass); where the score leaves the
+    hidden checks' points out (a students' view before release), the hidden checks counted apart, as the score is."""
+    graded = [c for c in exercise.checks if _graded(c)]
+    hidden = [c for c in graded if c.hidden] if hidden_apart else []
+    shown = [c for c in graded if c not in hidden]
+    cell = f"{sum(c.passed for c in shown)} / {len(shown)}"
+    return cell + (f" (hidden: {sum(c.passed for c in hidden)} / {len(hidden)})" if hidden else "")
 
 
 def printed_output_line(result: GradingResult, page=None, elsewhere: str = "") -> str:
