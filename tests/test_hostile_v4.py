@@ -94,3 +94,8 @@ def test_names_alike_once_made_safe_are_told_apart(tmp_path):
     upload = read_upload(tmp_path / "class", [LAB07])
     names = sorted(entry.display_name for entry in upload.entries)
     assert len(set(names)) == 3 and all(name.startswith("bob (bob") for name in names), names
+    # (names alike as written -- two students called Wei Zhang -- stay as they are: rosters find students by name)
+    for name in ("Wei Zhang", "wei zhang"):
+        (tmp_path / "class2" / name).mkdir(parents=True)
+        (tmp_path / "class2" / name / f"{LAB07}.py").write_text((REFERENCE / f"{LAB07}.py").read_text())
+    assert sorted(e.display_name for e in read_upload(tmp_path / "class2", [LAB07]).entries) == ["Wei Zhang", "wei zhang"]

@@ -195,6 +195,7 @@ def read_upload(path, modules: list[str], every_module: list[str] = (),
     level only when ``allow_unconfined`` (as the batch grades).
     """
     upload = ClassUpload()
+    unsafe: dict[int, str] = {}   # each entry's name as the download wrote it (see _names_told_apart)
     every = set(every_module) | set(modules)
     with _open_tree(Path(path)) as tree:
         for name in getattr(tree, "outside", []):
@@ -209,9 +210,11 @@ def read_upload(path, modules: list[str], every_module: list[str] = (),
             if not entry.error:
                 _name_lone_file(entry, modules, every)
             _read_report(entry, names, reader)
+            written = entry.display_name
             _make_safe(entry)
+            unsafe[id(entry)] = written
     _assign_ids(upload.entries, known or Identities())
-    _names_told_apart(upload.entries)
+    _names_told_apart(upload.entries, unsafe)
     upload.warnings += _shared_identities(upload.entries)
     upload.entries.sort(key=lambda e: e.student_id)
     return upload
@@ -754,15 +757,16 @@ def _assign_ids(entries: list[Entry], known: Identities) -> None:
             entry.student_id = candidate
 
 
-def _names_told_apart(entries: list[Entry]) -> None:
-    """Names several entries show alike (two students called Wei Zhang; ``bob`` and ``bob`` with an invisible
-    character, made safe to the same name) followed by each one's id, so that no two rows of a page or an export
-    read as one student."""
+def _names_told_apart(entries: list[Entry], written: dict[int, str]) -> None:
+    """Names made alike by making them safe (``bob`` and ``bob`` with an invisible character, ``written`` as the
+    download wrote them, by ``id()`` of the entry) followed by each one's id, so that no two rows of a page or an
+    export read as one student. Names that were alike as written (two students called Wei Zhang) stay as they are:
+    the roster and the overrides find students by name too."""
     shown_by: dict[str, list[Entry]] = {}
     for entry in entries:
-        shown_by.setdefault(entry.display_name.casefold(), []).append(entry)
+        shown_by.setdefault(entry.display_name, []).append(entry)
     for group in shown_by.values():
-        if len(group) > 1:
+        if len({written.get(id(entry), entry.display_name) for entry in group}) > 1:
             for entry in group:   # (within the names' bound: the id is what tells them apart)
                 told = f" ({entry.student_id[:NAME_LENGTH // 2]})"
                 entry.display_name = one_line(entry.display_name, max(1, NAME_LENGTH - len(told))) + told
