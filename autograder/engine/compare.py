@@ -148,10 +148,15 @@ def same_to_precision(got, expected, relative: float = 1e-7) -> bool:
     eps = max([np.finfo(a.dtype).eps for a in (got, expected) if a.dtype.kind == "f"], default=0.0)
     rtol = max(relative, 16 * float(eps))
     got, expected = got.astype(np.float64), expected.astype(np.float64)
-    finite = np.isfinite(expected)
-    scale = max(1.0, float(np.abs(expected[finite]).max())) if finite.any() else 1.0
-    return got.shape == expected.shape and bool(np.allclose(got, expected, rtol=rtol, atol=rtol * scale,
+    return got.shape == expected.shape and bool(np.allclose(got, expected, rtol=rtol, atol=rtol * answer_scale(expected),
                                                            equal_nan=True))
+
+
+def answer_scale(answer) -> float:
+    """The scale an answer's precision is measured against: its largest finite entry's size, at least 1."""
+    answer = np.asarray(answer, dtype=np.float64)
+    finite = np.isfinite(answer)
+    return max(1.0, float(np.abs(answer[finite]).max())) if finite.any() else 1.0
 
 
 # ---------------------------------------------------------------- matrices

@@ -34,7 +34,7 @@ import ast
 import numpy as np
 
 from .claims import guard, measured
-from .compare import same_to_precision
+from .compare import answer_scale, same_to_precision
 from .hints import Predicate
 
 MISTAKE = "the caller's array is changed in place"
@@ -212,11 +212,9 @@ def _apart(a, b) -> float:
     x, y = x.astype(np.float64), y.astype(np.float64)
     if not np.array_equal(np.isnan(x), np.isnan(y)):
         return np.inf
-    finite = np.isfinite(y)
-    scale = max(1.0, float(np.abs(y[finite]).max())) if finite.any() else 1.0
     with np.errstate(invalid="ignore"):
         difference = np.where((x == y) | (np.isnan(x) & np.isnan(y)), 0.0, np.abs(x - y))
-    return float(difference.max()) / scale if difference.size else 0.0
+    return float(difference.max()) / answer_scale(y) if difference.size else 0.0
 
 
 def _same(a, b, fingerprint, relative: float = SAME) -> bool:
