@@ -118,8 +118,10 @@ def test_a_library_the_sandbox_does_not_offer_is_told_with_what_it_offers(tmp_pa
         (tmp_path / f"{MODULE}.py").write_text(f"import {name}\n" + reference)
         message = grade(tmp_path, ["lab07.ex1"], limits=FAST).exercises[0].message
         assert f"No module named '{name}'" in message and "graded code may import Python's standard library, NumPy, " \
-            "OpenCV (cv2), SciPy, scikit-image and Matplotlib only" in message, message
+            "OpenCV (cv2), SciPy, scikit-image and Matplotlib" in message, message
         assert ("is installed where the grader runs" in message) == installed, message
+        # (a name found nowhere may be a file of the student's own not handed in)
+        assert (f"if {name}.py is a file of yours, add it to what you hand in" in message) == (not installed), message
 
 
 def test_infinite_loop_at_import(tmp_path):

@@ -892,9 +892,13 @@ def _library_not_offered(message: str, sandbox: Sandbox) -> str:
         installed = importlib.util.find_spec(name) is not None   # (a top-level name: found, never imported)
     except (ImportError, ValueError):
         installed = False
-    here = f" ({name} is installed where the grader runs, but graded code does not see it)" if installed else ""
-    return "\n  " + measured(f"graded code may import {OFFERED} only{here}: take the import of {name} out, "
-                             "or write what it did with those")
+    if installed:
+        return "\n  " + measured(f"graded code may import {OFFERED} only ({name} is installed where the grader runs, "
+                                 f"but graded code does not see it): take the import of {name} out, or write what it "
+                                 "did with those")
+    # (nowhere here: a library, or a file of the student's own not handed in beside the module)
+    return "\n  " + measured(f"graded code may import {OFFERED}, and the .py files handed in beside it: if {name}.py is "
+                             f"a file of yours, add it to what you hand in; else take the import of {name} out")
 
 
 def _another_labs_module(message: str, module: str) -> str:
