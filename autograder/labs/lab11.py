@@ -1544,10 +1544,10 @@ def fundamental_noisy(t):
     return partial(good / len(NOISY_SCENES), message, FUNDAMENTAL_STEPS_HINT.said(t))
 
 
-# (centred and scaled: to a mean distance of sqrt(2), Hartley's, or by each axis's spread or a norm -- 1 / np.std, a
-# normalisation of the 8-point algorithm as courses teach it too)
+# (centred and scaled: to a mean distance of sqrt(2), Hartley's, or by each axis's spread -- 1 / np.std, a
+# normalisation of the 8-point algorithm as courses teach it too; not a norm, which F / np.linalg.norm(F) calls)
 NORMALISES = ((calls("np.mean") | calls(".mean")) & (expr("np.sqrt(2)") | expr("2 ** 0.5") | expr("math.sqrt(2)")
-                                                      | calls("np.std") | calls(".std") | calls("np.linalg.norm"))
+                                                      | calls("np.std") | calls(".std"))
               ).saying("normalises the points")
 UNDOES_F = (expr("_.T @ _ @ _") | expr("np.transpose(_) @ _ @ _") | expr("_.T.dot(_).dot(_)") | expr("_.T @ (_ @ _)")
             | expr("np.dot(_.T, np.dot(_, _))") | expr("np.dot(np.dot(_.T, _), _)")).saying("computes T2^T Fn T1")
