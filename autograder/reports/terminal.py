@@ -79,8 +79,8 @@ def _checks_passed(exercise, hidden_apart: bool) -> str:
     """The table's "checks passed" cell: passed / graded (advice is not a check to pass); where the score leaves the
     hidden checks' points out (a students' view before release), the hidden checks counted apart, as the score is."""
     graded = [c for c in exercise.checks if _graded(c)]
-    hidden = [c for c in graded if c.hidden] if hidden_apart else []
-    shown = [c for c in graded if c not in hidden]
+    hidden = [c for c in graded if hidden_apart and c.hidden]
+    shown = [c for c in graded if not (hidden_apart and c.hidden)]
     cell = f"{sum(c.passed for c in shown)} / {len(shown)}"
     return cell + (f" (hidden: {sum(c.passed for c in hidden)} / {len(hidden)})" if hidden else "")
 
