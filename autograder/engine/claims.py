@@ -45,7 +45,7 @@ import sys
 from dataclasses import replace
 from typing import Callable, Iterable
 
-from ..loading.parsing import parse
+from ..loading.parsing import parse, walk
 from .hints import Hint, Predicate, _path, _same, code_of, functions_read
 
 # text -> its Hint (or Checklist), for every diagnosis registered with guard() or checklist(); texts marked measured()
@@ -302,7 +302,7 @@ def _pattern(text: str) -> ast.AST:
 
 def _assigned_names(function, test) -> set[str]:
     """Names the function assigns a value ``test`` holds for (``w = X[:, 2]``)."""
-    return {target.id for node in ast.walk(function) if isinstance(node, ast.Assign) and test(node.value)
+    return {target.id for node in walk(function) if isinstance(node, ast.Assign) and test(node.value)
             for target in node.targets if isinstance(target, ast.Name)}
 
 
@@ -319,7 +319,7 @@ def divides_by(*patterns: str, says: str = "") -> Predicate:
 
         def divisor(node) -> bool:
             return shaped(node) or (isinstance(node, ast.Name) and node.id in held)
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, (ast.Div, ast.FloorDiv)):
                 if divisor(node.right if isinstance(node, ast.BinOp) else node.value):
                     return True
@@ -393,7 +393,7 @@ def _argument_names(function, index: int) -> set[str]:
         return False
     # in the order written: a copy is made after what it copies (two passes for a loop's order;
     # never a pass per name: a chain of copies stays linear)
-    assignments = [node for node in ast.walk(function) if isinstance(node, ast.Assign)]
+    assignments = [node for node in walk(function) if isinstance(node, ast.Assign)]
     assignments.sort(key=lambda node: (node.lineno, node.col_offset))
     for _ in range(2):
         for node in assignments:
@@ -422,10 +422,10 @@ def negates_on_negative_det(argument: int | None = None, says: str = "") -> Pred
 
         def aimed(statement) -> bool:
             return aimed_at is None or bool(_bound_names(statement) & aimed_at)
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.If) and _det_sign_test(node.test, held):
                 if any(_negates(s) and aimed(s) for branch in (node.body, node.orelse) for s in branch
-                       for s in ast.walk(s)):
+                       for s in walk(s)):
                     return True
             # with an argument, only a value assigned to it counts; without, any expression
             value = node.value if isinstance(node, ast.Assign) and aimed(node) else node if aimed_at is None else None
@@ -450,7 +450,7 @@ def reshapes(*shape: int, order: str = "C") -> Predicate:
         return None
 
     def test(function) -> bool:
-        for node in ast.walk(function):
+        for node in walk(function):
             if not (isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "reshape"):
                 continue
             method = isinstance(node.func, ast.Attribute) and _path(node.func.value) not in ("np", "numpy")
@@ -477,7 +477,7 @@ def passes_argument(function: str, position: int, name: str, says: str = "") -> 
         return not (isinstance(node, ast.Constant) and node.value is None)
 
     def test(function_node) -> bool:
-        for node in ast.walk(function_node):
+        for node in walk(function_node):
             if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == last:
                 if len(node.args) > position and given(node.args[position]):
                     return True
@@ -500,7 +500,7 @@ def passes_parameters(function: str, positions: dict[int, str], says: str = "") 
     def test(function_node) -> bool:
         parameters = {a.arg for a in function_node.args.args + function_node.args.kwonlyargs}
         assigned: dict[str, list] = {}
-        for node in ast.walk(function_node):
+        for node in walk(function_node):
             if isinstance(node, ast.Assign):
                 for target in node.targets:
                     if isinstance(target, ast.Name):
@@ -529,7 +529,7 @@ def passes_parameters(function: str, positions: dict[int, str], says: str = "") 
         return any(isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == last
                    and all(len(node.args) > position and reads(node.args[position], name)
                            for position, name in positions.items())
-                   for node in ast.walk(function_node))
+                   for node in walk(function_node))
     return Predicate(says or f"gives {function} its own {', '.join(positions.values())}", test)
 
 
@@ -547,7 +547,7 @@ def zeroes_an_entry() -> Predicate:
         return not isinstance(index, ast.Slice)
 
     def test(function) -> bool:
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Assign) and zero(node.value) and any(
                     isinstance(target, ast.Subscript) and one_value(target.slice) for target in node.targets):
                 return True
@@ -581,12 +581,12 @@ def _vt_indexed(taken: Callable, says: str) -> Predicate:
             and node.slice.value == 2
 
     def test(function) -> bool:
-        held = {target.elts[2].id for node in ast.walk(function) if isinstance(node, ast.Assign) and _is_svd(node.value)
+        held = {target.elts[2].id for node in walk(function) if isinstance(node, ast.Assign) and _is_svd(node.value)
                 for target in node.targets if isinstance(target, ast.Tuple) and len(target.elts) == 3
                 and isinstance(target.elts[2], ast.Name)}
         held |= _assigned_names(function, lambda value: vt(value, set()))
         return any(isinstance(node, ast.Subscript) and vt(node.value, held) and taken(node.slice)
-                   for node in ast.walk(function))
+                   for node in walk(function))
     return Predicate(says, test)
 
 
@@ -624,7 +624,7 @@ def compares_a_distance_with(names: Iterable[str] = THRESHOLD_NAMES, says: str =
     names = frozenset(names)
 
     def is_threshold(node) -> bool:
-        return any(isinstance(n, ast.Name) and (n.id in names or n.id.startswith("thresh")) for n in ast.walk(node))
+        return any(isinstance(n, ast.Name) and (n.id in names or n.id.startswith("thresh")) for n in walk(node))
 
     def rooted_in(function, defs, returns_rooted) -> Callable:
         """``rooted(node)`` for ``function``: whether a value is computed through a square root.
@@ -634,10 +634,10 @@ def compares_a_distance_with(names: Iterable[str] = THRESHOLD_NAMES, says: str =
         read from its returns only: its arguments are its inputs (a homography from normalised
         points is not a distance because the normalisation took a square root)."""
         assigned: dict[str, list] = {}
-        for statement in ast.walk(function):
+        for statement in walk(function):
             if isinstance(statement, ast.Assign):
                 for target in statement.targets:
-                    for name in ast.walk(target):
+                    for name in walk(target):
                         if isinstance(name, ast.Name):
                             assigned.setdefault(name.id, []).append(statement.value)
         known: dict[str, bool] = {}
@@ -670,7 +670,7 @@ def compares_a_distance_with(names: Iterable[str] = THRESHOLD_NAMES, says: str =
         functions = list(functions)
         defs = {f.name: f for f in functions if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))}
         for function in functions:   # (a def inside one: its value is its returns, as a module function's --
-            for node in ast.walk(function):   # `errors(H) < threshold` is no distance for H's normalisation)
+            for node in walk(function):   # `errors(H) < threshold` is no distance for H's normalisation)
                 if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and node is not function:
                     defs.setdefault(node.name, node)
         readers, returned = {}, {}
@@ -684,12 +684,12 @@ def compares_a_distance_with(names: Iterable[str] = THRESHOLD_NAMES, says: str =
             if name not in returned:
                 returned[name] = False   # in progress: recursion adds nothing
                 function = defs[name]
-                returned[name] = any(reader(function)(r.value) for r in ast.walk(function)
+                returned[name] = any(reader(function)(r.value) for r in walk(function)
                                      if isinstance(r, ast.Return) and r.value is not None)
             return returned[name]
         for function in functions:
             rooted = reader(function)
-            for node in ast.walk(function):
+            for node in walk(function):
                 if not (isinstance(node, ast.Compare) and all(
                         isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE)) for op in node.ops)):
                     continue
@@ -715,10 +715,10 @@ def assigns(*names: str, says: str = "") -> Predicate:
     """A value stored in one of ``names`` (``ratio = 0.8``, ``ratio *= 2``, ``for ratio in ...``): with ``~``,
     a parameter the code never overwrites."""
     def test(function) -> bool:
-        for node in ast.walk(function):
+        for node in walk(function):
             targets = node.targets if isinstance(node, ast.Assign) else \
                 [node.target] if isinstance(node, (ast.AugAssign, ast.AnnAssign, ast.For, ast.comprehension)) else []
-            if any(isinstance(n, ast.Name) and n.id in names for target in targets for n in ast.walk(target)):
+            if any(isinstance(n, ast.Name) and n.id in names for target in targets for n in walk(target)):
                 return True
         return False
     return Predicate(says or f"assigns {' or '.join(names)}", test)
@@ -734,12 +734,12 @@ def treats_each_of(first: int = 0, second: int = 1, says: str = "") -> Predicate
             return False
         pair = {parameters[first], parameters[second]}
         given: dict[str, set] = {}
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, (ast.For, ast.comprehension)) and isinstance(node.iter, (ast.Tuple, ast.List)) \
-                    and pair <= {n.id for n in ast.walk(node.iter) if isinstance(n, ast.Name)}:
+                    and pair <= {n.id for n in walk(node.iter) if isinstance(n, ast.Name)}:
                 return True
             if isinstance(node, ast.Call) and _path(node.func):
-                held = {n.id for a in node.args for n in ast.walk(a) if isinstance(n, ast.Name)} & pair
+                held = {n.id for a in node.args for n in walk(a) if isinstance(n, ast.Name)} & pair
                 if len(held) == 1:   # a call given both (build(src, dst)) is no transform of each
                     given.setdefault(_path(node.func), set()).update(held)
         return any(held == pair for held in given.values())
@@ -753,23 +753,23 @@ def returns_from(made: Predicate, says: str = "") -> Predicate:
     def test(function) -> bool:
         held: set[str] = set()
         for _ in range(4):   # names from names, a few steps
-            for node in ast.walk(function):
+            for node in walk(function):
                 if isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and node.value is not None:
                     source = node if isinstance(node, ast.AugAssign) else node.value
                     if made.holds([source]) or any(isinstance(n, ast.Name) and n.id in held
-                                                   for n in ast.walk(node.value)):
+                                                   for n in walk(node.value)):
                         targets = node.targets if isinstance(node, ast.Assign) else [node.target]
-                        held |= {n.id for target in targets for n in ast.walk(target) if isinstance(n, ast.Name)}
+                        held |= {n.id for target in targets for n in walk(target) if isinstance(n, ast.Name)}
         return any(isinstance(node, ast.Return) and node.value is not None
                    and (made.holds([node.value]) or any(isinstance(n, ast.Name) and n.id in held
-                                                        for n in ast.walk(node.value)))
-                   for node in ast.walk(function))
+                                                        for n in walk(node.value)))
+                   for node in walk(function))
     return Predicate(says or f"returns what {made.says}", test)
 
 
 DIVISION = Predicate("divides", lambda node: any(
     isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Div)
-    or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide") for n in ast.walk(node)))
+    or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide") for n in walk(node)))
 
 
 def registered(texts: Iterable[str]) -> list[str]:
@@ -785,11 +785,11 @@ def subtracts_a_mean(says: str = "") -> Predicate:
     """A centroid subtracted: ``pts - pts.mean(axis=0)``, ``x - c[0]`` or ``-s * c[0]`` (a translation's entry) for
     a ``c`` assigned a mean, directly or through one name; read leniently (any mean subtracted or negated)."""
     def test(function) -> bool:
-        means = _assigned_names(function, lambda value: any(_is_mean(n) for n in ast.walk(value)))
+        means = _assigned_names(function, lambda value: any(_is_mean(n) for n in walk(value)))
 
         def meanish(node) -> bool:
-            return any(_is_mean(n) or (isinstance(n, ast.Name) and n.id in means) for n in ast.walk(node))
-        for node in ast.walk(function):
+            return any(_is_mean(n) or (isinstance(n, ast.Name) and n.id in means) for n in walk(node))
+        for node in walk(function):
             if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, ast.Sub) \
                     and meanish(node.right if isinstance(node, ast.BinOp) else node.value):
                 return True

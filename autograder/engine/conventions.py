@@ -40,6 +40,7 @@ from .claims import from_code, measured, where_to_look
 from .compare import same_to_precision
 from .forms import IMAGE_SIDE
 from .hints import code_of
+from ..loading.parsing import walk
 
 # per convention ("channels", "rows", "integers"): function -> its lab's key;
 # "not judged": (convention, function) -> why
@@ -343,7 +344,7 @@ def _length_tests(functions, parameters: set, k: int) -> list:
     found = []
     for function in functions:
         inputs, _ = _read_from_inputs(function, parameters, any_dtype=True)
-        for node in ast.walk(function):
+        for node in walk(function):
             if not isinstance(node, ast.Compare) or len(node.ops) != 1 or _counts_rows(node.left) not in inputs:
                 continue
             right = node.comparators[0]
@@ -410,7 +411,7 @@ def _read_from_inputs(function, parameters: set, any_dtype: bool = False) -> tup
     ``pts = np.asarray(pts1).reshape(-1, 2)``, followed three assignments deep), and its assignments
     to a single name."""
     inputs = set(parameters)
-    assigned = [node for node in ast.walk(function) if isinstance(node, ast.Assign) and len(node.targets) == 1
+    assigned = [node for node in walk(function) if isinstance(node, ast.Assign) and len(node.targets) == 1
                 and isinstance(node.targets[0], ast.Name)]
     for _ in range(3):
         inputs |= {node.targets[0].id for node in assigned if _root(node.value, any_dtype) in inputs}
@@ -438,9 +439,9 @@ def _made_like(functions, parameters: set) -> list:
     found = []
     for function in functions:
         inputs, assigned = _read_from_inputs(function, parameters)
-        written = {node.target.id for node in ast.walk(function)
+        written = {node.target.id for node in walk(function)
                    if isinstance(node, ast.AugAssign) and isinstance(node.target, ast.Name)}
-        written |= {_root(target) for node in ast.walk(function) if isinstance(node, (ast.Assign, ast.AugAssign))
+        written |= {_root(target) for node in walk(function) if isinstance(node, (ast.Assign, ast.AugAssign))
                     for target in (node.targets if isinstance(node, ast.Assign) else [node.target])
                     if isinstance(target, ast.Subscript)}
         for node in assigned:

@@ -18,6 +18,7 @@ import re
 from .claims import from_code, measured
 from .forms import Form
 from .hints import _own_nodes, _path
+from ..loading.parsing import walk
 
 _BUILD_INDEX = re.compile(r"in function 'buildIndex_'.*?type=(\d+)", re.S)
 _HAMMING_FLOATS = re.compile(r"\(type == CV_8U && dtype == CV_32S\) \|\| dtype == CV_32F in function 'batchDistance'")
@@ -78,7 +79,7 @@ def _disparities_unrounded(functions) -> Form | None:
             place = 0 if _path(node.func).endswith("StereoBM_create") else 1
             given = next((k.value for k in node.keywords if k.arg == "numDisparities"),
                          node.args[place] if len(node.args) > place else None)
-            if given is None or any(isinstance(n, ast.Constant) and n.value == 16 for n in ast.walk(given)):
+            if given is None or any(isinstance(n, ast.Constant) and n.value == 16 for n in walk(given)):
                 continue
             return Form(from_code(
                 f"your code gives {_path(node.func).rpartition('.')[2]} numDisparities={_short(given)} (line "

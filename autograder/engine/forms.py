@@ -32,6 +32,7 @@ import numpy as np
 from ..sandbox import beginner
 from .claims import divides_by, guard, guessed, measured
 from .hints import Predicate, expr, keyword, mentions
+from ..loading.parsing import walk
 
 
 def _divides_by_last(k: int):
@@ -58,9 +59,9 @@ def _index_pairs(function):
     """The (first, second) names leading each two-index subscript of ``function`` (``img[y + 1, x]``
     gives ``("y", "x")``, and so does ``img[y][x]``, one index after the other; an index with no name gives ``""``)."""
     def leading(index) -> str:
-        return next((n.id for n in ast.walk(index) if isinstance(n, ast.Name)), "")
+        return next((n.id for n in walk(index) if isinstance(n, ast.Name)), "")
 
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2:
             yield tuple(leading(e) for e in node.slice.elts)
         elif isinstance(node, ast.Subscript) and isinstance(node.value, ast.Subscript) \

@@ -22,7 +22,7 @@ from __future__ import annotations
 import ast
 from dataclasses import replace
 
-from ..loading.parsing import TooLarge, parse
+from ..loading.parsing import TooLarge, parse, walk
 from .conventions import STATE_BETWEEN_CALLS
 
 # Calls whose value is a new container: a name bound to one at the top of a module can hold state.
@@ -64,7 +64,7 @@ def _reached(tree: ast.Module, function: str) -> list[ast.AST]:
         if name in seen or name not in defs:
             continue
         seen.add(name)
-        for node in ast.walk(defs[name]):
+        for node in walk(defs[name]):
             if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
                 todo.append(node.id)
                 if node.id in classes:
@@ -96,7 +96,7 @@ def holders(source: str, function: str) -> list[tuple[str, int]]:
         for default in [*fn.args.defaults, *(d for d in fn.args.kw_defaults if d is not None)]:
             if _is_container(default):
                 changed.setdefault(f"a mutable default of {fn.name}", default.lineno)
-        for node in ast.walk(fn):
+        for node in walk(fn):
             if isinstance(node, (ast.Global, ast.Nonlocal)):
                 for name in node.names:
                     changed.setdefault(name, top.get(name, node.lineno))

@@ -49,7 +49,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Iterable
 
-from ..loading.parsing import parse
+from ..loading.parsing import parse, walk
 from ..loading.reading import MAX_NODES, MAX_SOURCE_BYTES, overwritten_running_bests
 
 
@@ -113,10 +113,10 @@ def call_in_a_loop(functions, names) -> tuple[str, int] | None:
     name: "calibrateCamera") made in a loop's body or a comprehension of ``functions``: a step the sheet makes
     once, made for each item (each view calibrated alone); None when there is none."""
     for function in functions:
-        for loop in ast.walk(function):
+        for loop in walk(function):
             body = loop.body if isinstance(loop, (ast.For, ast.While)) else [loop.elt] \
                 if isinstance(loop, (ast.ListComp, ast.GeneratorExp, ast.SetComp)) else []
-            for node in (n for part in body for n in ast.walk(part)):
+            for node in (n for part in body for n in walk(part)):
                 if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in names:
                     return _path(node.func), node.lineno
     return None
@@ -176,7 +176,7 @@ class Scope:
 def scope_of(tree: ast.AST) -> Scope:
     """The :class:`Scope` of a parsed module (or of one function read alone)."""
     modules, imported, defined, star = {}, {}, set(), []
-    for node in ast.walk(tree):
+    for node in walk(tree):
         if isinstance(node, ast.Import):
             for alias in node.names:
                 if alias.asname:
@@ -260,7 +260,7 @@ def calls(name: str, at_least: int = 1) -> Predicate:
     shown = name.lstrip(".")
 
     def count(function) -> int:
-        return sum(1 for node in ast.walk(function)
+        return sum(1 for node in walk(function)
                    if isinstance(node, ast.Call) and _name_matches(node.func, name, _scope(function)))
     if at_least <= 1:
         return Predicate(f"calls {shown}", lambda function: count(function) >= 1)
@@ -275,26 +275,26 @@ RANDOM_DRAWS = frozenset({"choice", "sample", "permutation", "shuffle", "integer
 def _drawn_names(function) -> set[str]:
     """The names holding a random draw, or made from one (`idx = rng.permutation(n)`, `sample = idx[:4]`,
     `for idx in samples` over drawn samples), never a mask a comparison makes."""
-    bindings = [(node.targets, node.value) for node in ast.walk(function) if isinstance(node, ast.Assign)] + \
-        [([node.target], node.iter) for node in ast.walk(function) if isinstance(node, (ast.For, ast.comprehension))]
+    bindings = [(node.targets, node.value) for node in walk(function) if isinstance(node, ast.Assign)] + \
+        [([node.target], node.iter) for node in walk(function) if isinstance(node, (ast.For, ast.comprehension))]
     drawn: set[str] = set()
     grown = True
     while grown:
         grown = False
         for targets, value in bindings:
-            reads = {n.id for n in ast.walk(value) if isinstance(n, ast.Name)}
+            reads = {n.id for n in walk(value) if isinstance(n, ast.Name)}
             draws = any(isinstance(c, ast.Call) and isinstance(c.func, (ast.Attribute, ast.Name))
                         and (c.func.attr if isinstance(c.func, ast.Attribute) else c.func.id) in RANDOM_DRAWS
-                        for c in ast.walk(value))
+                        for c in walk(value))
             if draws or reads & drawn:
-                made = {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)} - drawn
+                made = {n.id for t in targets for n in walk(t) if isinstance(n, ast.Name)} - drawn
                 if made:
                     drawn |= made
                     grown = True
     # (a name a comparison binds is a mask, whatever it was measured from: `inliers = errors < threshold`
     # with the errors of drawn samples picks the pairs a model keeps, not a random sample)
     masks = {n.id for targets, value in bindings if isinstance(value, ast.Compare)
-             for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+             for t in targets for n in walk(t) if isinstance(n, ast.Name)}
     return drawn - masks
 
 
@@ -303,11 +303,11 @@ def picked_point_fits(function, name: str) -> list[ast.Call]:
     src[inliers], dst[inliers])`): refits on the inliers, not the fit of a random sample (`src[sample]`,
     a name holding a draw) nor of every point (`homography_dlt(src, dst)`)."""
     drawn = _drawn_names(function)
-    return [node for node in ast.walk(function)
+    return [node for node in walk(function)
             if isinstance(node, ast.Call) and _name_matches(node.func, name, _scope(function))
             and any(isinstance(argument, ast.Subscript) and not isinstance(argument.slice, ast.Slice)
-                    and not {n.id for n in ast.walk(argument.slice) if isinstance(n, ast.Name)} & drawn
-                    and any(isinstance(n, ast.Name) for n in ast.walk(argument.slice)) for argument in node.args)]
+                    and not {n.id for n in walk(argument.slice) if isinstance(n, ast.Name)} & drawn
+                    and any(isinstance(n, ast.Name) for n in walk(argument.slice)) for argument in node.args)]
 
 
 def fits_on_picked_points(name: str) -> Predicate:
@@ -322,7 +322,7 @@ def mentions(name: str) -> Predicate:
     shown = name.lstrip(".")
 
     def test(function) -> bool:
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, (ast.Attribute, ast.Name)) and _name_matches(node, name, _scope(function)):
                 return True
         return False
@@ -335,7 +335,7 @@ def uses_attr(attribute: str) -> Predicate:
 
 
 def _holds_name(node, name: str | None) -> bool:
-    return name is None or any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(node))
+    return name is None or any(isinstance(n, ast.Name) and n.id == name for n in walk(node))
 
 
 def matmul_of(left: str | None, right: str | None) -> Predicate:
@@ -357,7 +357,7 @@ def matmul_of(left: str | None, right: str | None) -> Predicate:
         return None
 
     def test(function) -> bool:
-        for node in ast.walk(function):
+        for node in walk(function):
             pair = operands(node)
             if pair and _holds_name(pair[0], left) and _holds_name(pair[1], right):
                 return True
@@ -377,9 +377,9 @@ def passes_product(function: str, position: int) -> Predicate:
     """A call of ``function`` whose argument at ``position`` is a matrix product, written there or
     held by a name the function assigns a product to (``M = T @ H; cv2.warpPerspective(img, M, ...)``)."""
     def test(tree) -> bool:
-        products = {target.id for node in ast.walk(tree) if isinstance(node, ast.Assign) and _product(node.value)
+        products = {target.id for node in walk(tree) if isinstance(node, ast.Assign) and _product(node.value)
                     for target in node.targets if isinstance(target, ast.Name)}
-        for node in ast.walk(tree):
+        for node in walk(tree):
             if isinstance(node, ast.Call) and _name_matches(node.func, function, _scope(tree)) \
                     and len(node.args) > position:
                 given = node.args[position]
@@ -415,12 +415,12 @@ def expr(pattern: str) -> Predicate:
     """A sub-expression shaped like ``pattern`` (``"max_disparity + 1"``; ``_`` matches anything)."""
     wanted = parse(pattern, mode="eval", max_chars=None, max_statements=None).body
 
-    named = {node.id for node in ast.walk(wanted) if isinstance(node, ast.Name)}
+    named = {node.id for node in walk(wanted) if isinstance(node, ast.Name)}
 
     def test(function) -> bool:
         if named & getattr(function, "_rebound", set()):
             return False   # (a helper's parameter of that name holds another value: not the caller's expression)
-        return any(_same(node, wanted) for node in ast.walk(function))
+        return any(_same(node, wanted) for node in walk(function))
     return Predicate("computes " + re.sub(r"\b_\b", "...", pattern), test)
 
 
@@ -443,7 +443,7 @@ def keyword(function: str, name: str, value=ANY) -> Predicate:
         scope = _scope(tree)
         return any(isinstance(node, ast.Call) and _name_matches(node.func, function, scope)
                    and any(k.arg == name and matches(k.value, scope) for k in node.keywords)
-                   for node in ast.walk(tree))
+                   for node in walk(tree))
     shown = f"{name}=" if value is ANY else f"{name}={value}"
     return Predicate(f"passes {shown} to {function.lstrip('.')}", test)
 
@@ -463,7 +463,7 @@ _FOLLOW = 8   # steps followed back from the picked value
 
 def _named(node, names) -> bool:
     """Whether an identifier in ``node`` (a name, an attribute or a called function's) holds one of ``names``."""
-    for n in ast.walk(node):
+    for n in walk(node):
         ident = n.id if isinstance(n, ast.Name) else n.attr if isinstance(n, ast.Attribute) else None
         if ident and any(word in ident.lower() for word in names):
             return True
@@ -509,7 +509,7 @@ class _Signs:
         if isinstance(node, ast.Call):
             called = self._called(node.func)
             if called is not None:
-                returned = [n.value for n in ast.walk(called) if isinstance(n, ast.Return) and n.value is not None]
+                returned = [n.value for n in walk(called) if isinstance(n, ast.Return) and n.value is not None]
                 if returned:
                     negated, named = self.of(returned[-1], called, steps - 1)
                     return negated, named or _named(node.func, self.names)
@@ -525,7 +525,7 @@ class _Signs:
         """The values stored in ``name`` (or its elements) in ``function`` that carry something
         (not a constant or an array filled with one)."""
         values = []
-        for n in ast.walk(function):
+        for n in walk(function):
             if isinstance(n, ast.Assign):
                 targets, value = n.targets, n.value
             elif isinstance(n, (ast.AugAssign, ast.AnnAssign)) and n.value is not None:
@@ -556,7 +556,7 @@ def _picks(highest: bool, names) -> Callable[[list], bool]:
     def test(functions) -> bool:
         signs = _Signs(functions, names)
         for function in functions:
-            for node in ast.walk(function):
+            for node in walk(function):
                 if not isinstance(node, ast.Call):
                     continue
                 last = _path(node.func).rsplit(".", 1)[-1]
@@ -592,14 +592,14 @@ def _argsort_end(last: bool) -> Callable[[ast.AST], bool]:
         return any(isinstance(node, ast.Subscript) and isinstance(node.value, ast.Call)
                    and _path(node.value.func).rsplit(".", 1)[-1] == "argsort" and _negation(node.value.args[0]
                                                                                            if node.value.args else None) is None
-                   and end(node.slice) for node in ast.walk(function))
+                   and end(node.slice) for node in walk(function))
     return test
 
 
 def _loop_keeps(op, names) -> Callable[[ast.AST], bool]:
     """An ``if`` comparing a value named by ``names`` with a kept best (``score > best``)."""
     def test(function) -> bool:
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.If) and isinstance(node.test, ast.Compare) and len(node.test.ops) == 1:
                 left, right = node.test.left, node.test.comparators[0]
                 if isinstance(node.test.ops[0], op) and _named(left, names) and _named(right, ("best", "max", "min")):
@@ -615,11 +615,11 @@ def _running_best(highest: bool) -> Callable[[ast.AST], bool]:
     the plain value (a larger plain value, or a smaller negated one); else the lowest."""
     def test(function) -> bool:
         negated, plain = set(), set()
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
                 (negated if _negation(node.value) is not None else plain).add(node.targets[0].id)
         overwritten = {id(compare) for compare, *_ in overwritten_running_bests(function)}
-        for node in ast.walk(function):
+        for node in walk(function):
             if not (isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Lt, ast.Gt))) \
                     or id(node) in overwritten:   # (a best set to every turn's value is not kept)
                 continue
@@ -642,8 +642,8 @@ def _location_of_extreme(highest: bool) -> Callable[[ast.AST], bool]:
     index = 3 if highest else 2
 
     def test(function) -> bool:
-        loaded = {n.id for n in ast.walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
-        for node in ast.walk(function):
+        loaded = {n.id for n in walk(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+        for node in walk(function):
             call = node.value if isinstance(node, (ast.Assign, ast.Subscript)) else None
             if not (isinstance(call, ast.Call) and _path(call.func).rsplit(".", 1)[-1] == "minMaxLoc"):
                 continue
@@ -740,10 +740,10 @@ def parameter_flows(code: Code, function: str, parameter: str, depth: int = 4) -
         return False
     if parameter not in {a.arg for a in (*node.args.posonlyargs, *node.args.args, *node.args.kwonlyargs)}:
         return False
-    names = [n for n in ast.walk(node) if isinstance(n, ast.Name) and n.id == parameter]
+    names = [n for n in walk(node) if isinstance(n, ast.Name) and n.id == parameter]
     if any(not isinstance(n.ctx, ast.Load) for n in names):
         return False   # (assigned somewhere: what is used may be another value)
-    parents = {id(child): parent for parent in ast.walk(node) for child in ast.iter_child_nodes(parent)}
+    parents = {id(child): parent for parent in walk(node) for child in ast.iter_child_nodes(parent)}
     for name in names:
         parent = parents.get(id(name))
         while isinstance(parent, ast.Call) and len(parent.args) == 1 and parent.args[0] is name \
@@ -773,7 +773,7 @@ def read_code(text: str) -> Code:
         if len(text) > MAX_SOURCE_BYTES:
             return NO_CODE
         tree = parse(text)   # under the parse lock, within its bounds (TooLarge is a ValueError)
-        if sum(1 for _ in ast.walk(tree)) > MAX_NODES:
+        if sum(1 for _ in walk(tree)) > MAX_NODES:
             return NO_CODE
     except (SyntaxError, ValueError, RecursionError, MemoryError):
         return NO_CODE
@@ -813,11 +813,11 @@ def _rebound(functions: dict) -> dict:
         return node.id if isinstance(node, ast.Name) else ""
 
     for caller in functions.values():
-        stores = [n for n in ast.walk(caller) if isinstance(n, ast.Assign) and len(n.targets) == 1
+        stores = [n for n in walk(caller) if isinstance(n, ast.Assign) and len(n.targets) == 1
                   and isinstance(n.targets[0], ast.Name)]
         counts = Counter(n.targets[0].id for n in stores)
         assigned = {n.targets[0].id: n.value for n in stores if counts[n.targets[0].id] == 1}
-        for call in ast.walk(caller):
+        for call in walk(caller):
             if not (isinstance(call, ast.Call) and isinstance(call.func, ast.Name) and call.func.id in functions):
                 continue
             callee = functions[call.func.id]
@@ -856,7 +856,7 @@ def _own_references(node, name: str, functions: dict, aliases: dict, scope: Scop
     """The module's functions other than ``name`` that ``node`` (a function, its nested ones
     included) refers to: by name, by an alias, or as ``module.f`` of an import of its own module."""
     found = set()
-    for n in ast.walk(node):
+    for n in walk(node):
         if isinstance(n, ast.Name):
             target = n.id if n.id in functions else aliases.get(n.id)
         elif isinstance(n, ast.Attribute) and isinstance(n.value, ast.Name) and n.attr in functions \
@@ -974,7 +974,7 @@ def _always_leaves(statements) -> bool:
         return (_always_leaves(last.body) or _always_leaves(last.orelse)) and all(
             _always_leaves(h.body) for h in last.handlers)
     if isinstance(last, ast.While) and isinstance(last.test, ast.Constant) and last.test.value is True:
-        return not any(isinstance(n, ast.Break) for n in ast.walk(last))
+        return not any(isinstance(n, ast.Break) for n in walk(last))
     return False
 
 
@@ -994,7 +994,7 @@ def none_returned(code: Code, function: str, *, in_tuple: bool = False) -> str:
         if isinstance(node, ast.If):
             for branch, negated in ((node.body, False), (node.orelse, True)):
                 for inner in branch:
-                    for leaf in ast.walk(inner):
+                    for leaf in walk(inner):
                         if isinstance(leaf, ast.Return) and id(leaf) not in conditions:
                             test = _unparsed(node.test)
                             conditions[id(leaf)] = f"not ({test})" if negated else test
@@ -1063,17 +1063,17 @@ def size_given_as_shape(code: Code, functions: Iterable[str]) -> str:
     for function in code.reachable(functions):
         unpacked = {}
         named: dict = {}   # a name given a size rows first once (`size = image.shape[:2]`) -> that value
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Tuple) and isinstance(
                     node.value, ast.Subscript) and _path(node.value.value).endswith("shape"):
                 for position, target in enumerate(node.targets[0].elts):
                     if isinstance(target, ast.Name):
                         unpacked[target.id] = position
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
                 name = node.targets[0].id
                 named[name] = _rows_first(node.value, unpacked) if name not in named else None   # (once only)
-        for node in ast.walk(function):
+        for node in walk(function):
             if not isinstance(node, ast.Call):
                 continue
             name = _path(node.func).rsplit(".", 1)[-1]
@@ -1104,7 +1104,7 @@ def complex_makers(code: Code, functions: Iterable[str]) -> list[str]:
     ones, as ``np.linalg.eig`` (line N); [] when none is written."""
     found = []
     for function in code.reachable(functions):
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in COMPLEX_MAKERS:
                 found.append((node.lineno, f"`{_path(node.func)}` (line {node.lineno})"))
     return [text for _, text in sorted(set(found))]
@@ -1134,7 +1134,7 @@ def divides_by_255(t) -> str:
     from .claims import from_code
 
     for function in code_of(t).reachable(functions_read(t)):
-        for node in ast.walk(function):
+        for node in walk(function):
             divisor = node.right if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) else \
                 node.value if isinstance(node, ast.AugAssign) and isinstance(node.op, ast.Div) else None
             if isinstance(divisor, ast.Constant) and type(divisor.value) in (int, float) and divisor.value == 255:
@@ -1151,7 +1151,7 @@ def float_canvas(t) -> str:
     code = code_of(t)
     called = list(dict.fromkeys(call[0] for call in getattr(t, "calls", ()) if call))
     for function in code.reachable(called) if called else ():
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Call) and _path(node.func) in {f"np.{m}" for m in _CANVAS_MAKERS} \
                     and node.args and ".shape" in ast.unparse(node.args[0]) \
                     and not any(k.arg == "dtype" for k in node.keywords) \

@@ -17,6 +17,7 @@ import numpy as np
 
 from .claims import from_code
 from .hints import Code, _own_nodes, signature_of_def
+from ..loading.parsing import walk
 
 MISTAKE = "a parameter given is never used"
 _INTROSPECTION = frozenset({"locals", "vars", "globals", "eval", "exec"})
@@ -93,7 +94,7 @@ def read_beyond_itself(fn: ast.FunctionDef) -> set[str] | None:
     bind P1 again: a conversion whose result is never read leaves P1 unused); None where it reads ``locals()``
     and the like."""
     converting = set()
-    for statement in ast.walk(fn):
+    for statement in walk(fn):
         if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1):
             continue
         target, value = statement.targets[0], statement.value
@@ -101,9 +102,9 @@ def read_beyond_itself(fn: ast.FunctionDef) -> set[str] | None:
             list(zip(target.elts, value.elts)) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) \
             and len(target.elts) == len(value.elts) else []   # (`P1, P2 = np.asarray(P1), np.asarray(P2)`)
         converting |= {id(node) for name, made in pairs if isinstance(name, ast.Name)
-                       for node in ast.walk(made) if isinstance(node, ast.Name) and node.id == name.id}
+                       for node in walk(made) if isinstance(node, ast.Name) and node.id == name.id}
     loaded = set()
-    for node in ast.walk(fn):
+    for node in walk(fn):
         if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
             if node.id in _INTROSPECTION:
                 return None

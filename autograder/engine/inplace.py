@@ -36,6 +36,7 @@ import numpy as np
 from .claims import guard, measured
 from .compare import answer_scale, same_to_precision
 from .hints import Predicate
+from ..loading.parsing import walk
 
 MISTAKE = "the caller's array is changed in place"
 
@@ -233,7 +234,7 @@ def _same(a, b, fingerprint, relative: float = SAME) -> bool:
 
 
 AUGMENTS = Predicate("writes an augmented assignment (x /= s)",
-                     lambda function: any(isinstance(node, ast.AugAssign) for node in ast.walk(function)))
+                     lambda function: any(isinstance(node, ast.AugAssign) for node in walk(function)))
 HINT = (measured("work on a copy: x = np.array(x, dtype=float) copies (np.asarray and .astype(float) of a float "
                  "array do not)")
         + guard(", and write x = x / s rather than x /= s", ~AUGMENTS, instead=""))

@@ -40,6 +40,7 @@ from .hints import (Hint, Predicate, _path, calls, code_of, functions_read, ment
 from .compare import (SAME_ANSWER, at_precision, blurred_difference, closest, fill_fraction, format_apart,
                       format_arrays_apart, max_abs_error, projective_distance, rows_left_out, rows_left_out_words,
                       warp_error, whole_pixel_shift, DETAIL_KEPT, detail_kept)
+from ..loading.parsing import walk
 
 IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered area
 
@@ -47,9 +48,9 @@ IMAGE_TOLERANCE = 6.0   # mean blurred grey-level error accepted on the covered 
 def _border_constant_by_name(function) -> bool:
     """cv2.BORDER_CONSTANT given by name where it is given (`borderMode=cv2.BORDER_CONSTANT`), not in a place
     of its own (a warp's fifth argument is flags)."""
-    return all(any(k.arg == "borderMode" and k.value is node for call in ast.walk(function) if isinstance(call, ast.Call)
+    return all(any(k.arg == "borderMode" and k.value is node for call in walk(function) if isinstance(call, ast.Call)
                    for k in call.keywords)
-               for node in ast.walk(function) if isinstance(node, ast.Attribute) and node.attr == "BORDER_CONSTANT"
+               for node in walk(function) if isinstance(node, ast.Attribute) and node.attr == "BORDER_CONSTANT"
                and isinstance(node.value, ast.Name) and node.value.id in ("cv2", "cv"))
 
 
@@ -88,7 +89,7 @@ def _clips_a_coordinate(function) -> bool:
     def value_bound(node) -> bool:
         return isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and node.value in (0, 1, 255)
 
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("clip", "minimum", "maximum") \
                 and _path(node.func).split(".", 1)[0] in ("np", "numpy"):
             bounds = node.args[1:] + [k.value for k in node.keywords if k.arg in ("a_min", "a_max", "min", "max")]
@@ -101,7 +102,7 @@ CLIPS = Predicate("clips coordinates into the image (np.clip)", _clips_a_coordin
 # np.interp gives a position outside the samples the first or the last sample, unless left= and right= say
 INTERP_EXTENDS = Predicate("calls np.interp without left= and right=", lambda function: any(
     isinstance(node, ast.Call) and _path(node.func) in ("np.interp", "numpy.interp")
-    and not {"left", "right"} <= {k.arg for k in node.keywords} and len(node.args) < 5 for node in ast.walk(function)))
+    and not {"left", "right"} <= {k.arg for k in node.keywords} and len(node.args) < 5 for node in walk(function)))
 ROLL_HINT = from_code("np.roll moves the pixels that leave one side back in on the other: set the rows and "
                       "columns it brought round to 0, or warp with cv2.warpAffine (black fill)")
 
@@ -776,7 +777,7 @@ def reads(name: str) -> Predicate:
         if name not in {a.arg for a in (*arguments.posonlyargs, *arguments.args, *arguments.kwonlyargs)}:
             return False
         return any(isinstance(node, ast.Name) and node.id == name and isinstance(node.ctx, ast.Load)
-                   for node in ast.walk(function))
+                   for node in walk(function))
     return Predicate(f"reads {name}", test)
 
 
@@ -823,12 +824,12 @@ def _overwritten_before_read(code, function: str, parameter: str) -> tuple[int, 
     node = code.functions.get(function)
     if node is None or parameter not in {a.arg for a in (*node.args.posonlyargs, *node.args.args, *node.args.kwonlyargs)}:
         return None
-    reads = [n.lineno for n in ast.walk(node) if isinstance(n, ast.Name) and n.id == parameter
+    reads = [n.lineno for n in walk(node) if isinstance(n, ast.Name) and n.id == parameter
              and isinstance(n.ctx, ast.Load)]
     for statement in node.body:
         if isinstance(statement, ast.Assign) and any(isinstance(target, ast.Name) and target.id == parameter
                                                      for target in statement.targets) \
-                and parameter not in {n.id for n in ast.walk(statement.value) if isinstance(n, ast.Name)}:
+                and parameter not in {n.id for n in walk(statement.value) if isinstance(n, ast.Name)}:
             written = " ".join(ast.unparse(statement).split())
             return (statement.lineno, written if len(written) <= 80 else written[:77] + "...") \
                 if not reads or min(reads) >= statement.lineno else None
@@ -890,7 +891,7 @@ def _makes_unit_range(code) -> bool:
     functions = list(code.functions.values())
     if not functions:
         return True
-    for node in (n for fn in functions for n in ast.walk(fn)):
+    for node in (n for fn in functions for n in walk(fn)):
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) and isinstance(node.right, ast.Constant) \
                 and node.right.value in (255, 255.0):
             return True

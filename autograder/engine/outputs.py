@@ -18,6 +18,7 @@ import re
 from dataclasses import dataclass
 
 from .hints import _own_nodes, _path
+from ..loading.parsing import walk
 
 # What a name reads as: a quantity, and for a stereo pair's outputs a side (1 or 2).
 _KINDS = {
@@ -269,7 +270,7 @@ def _positions(elements, count: int) -> list[int] | None:
 
 
 def _names_read(node) -> set[str]:
-    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    return {n.id for n in walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
 
 
 def feeding(function, expression, steps: int = 4) -> set[str]:
@@ -278,7 +279,7 @@ def feeding(function, expression, steps: int = 4) -> set[str]:
     for node in _own_nodes(function):
         if isinstance(node, ast.Assign):
             for target in node.targets:
-                for name in (n.id for n in ast.walk(target) if isinstance(n, ast.Name)):
+                for name in (n.id for n in walk(target) if isinstance(n, ast.Name)):
                     assigned.setdefault(name, []).append(node.value)
         elif isinstance(node, (ast.AugAssign, ast.AnnAssign)) and isinstance(node.target, ast.Name) and node.value:
             assigned.setdefault(node.target.id, []).append(node.value)

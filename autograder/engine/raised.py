@@ -27,6 +27,7 @@ import numpy as np
 from .claims import from_code, measured
 from .forms import Form
 from .hints import Code, _own_nodes, _path, none_returned, signature_of_def
+from ..loading.parsing import walk
 
 # 'File "lab09_camera.py", line 42, in camera_matrix' and, on the next line, the code
 _FRAME = re.compile(r'File "([^"]+)", line (\d+)(?:, in (\S+))?\n(?:    (.*))?')
@@ -206,7 +207,7 @@ def _fraction_sliced(fn, line: int, given: dict) -> Form | None:
         if not isinstance(node, ast.Slice) or not node.lineno <= line <= getattr(node, "end_lineno", node.lineno):
             continue
         for bound in (node.lower, node.upper, node.step):
-            for name in (n.id for n in ast.walk(bound) if isinstance(n, ast.Name)) if bound is not None else ():
+            for name in (n.id for n in walk(bound) if isinstance(n, ast.Name)) if bound is not None else ():
                 value = given.get(name)
                 if isinstance(value, (float, np.floating)) and value != int(value) and not _reassigned(fn, name, line):
                     # measured: the line raised on a slice holding this parameter, given a fraction
@@ -665,10 +666,10 @@ def _zero_divisor(fn, line: int, given: dict) -> Form | None:
                 and _number(node.right, known) == 0):
             continue
         said = f"your `{fn.name}` divides by `{_short(ast.unparse(node.right), 50)}` (line {line}), which is 0 here"
-        places = [(node.right, None)] + [(made[n.id], n.id) for n in ast.walk(node.right)
+        places = [(node.right, None)] + [(made[n.id], n.id) for n in walk(node.right)
                                          if isinstance(n, ast.Name) and n.id in made]
         for expression, name in places:
-            floored = next((n for n in ast.walk(expression) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.FloorDiv)
+            floored = next((n for n in walk(expression) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.FloorDiv)
                             and _number(n, known) == 0 and _number(n.left, known) not in (0, None)), None)
             if floored is None:
                 continue
@@ -842,7 +843,7 @@ def _read_only_written(fn, line: int, given: dict) -> Form | None:
 
 def _values(node, known: dict) -> str:
     """``width=5, n_bits=3``: the known numbers of the names ``node`` reads, in their order."""
-    names = dict.fromkeys(n.id for n in ast.walk(node) if isinstance(n, ast.Name) and n.id in known)
+    names = dict.fromkeys(n.id for n in walk(node) if isinstance(n, ast.Name) and n.id in known)
     return ", ".join(f"{name}={known[name]!r}" for name in names)
 
 
@@ -864,7 +865,7 @@ def _numbers_known(fn, line: int, given: dict) -> tuple[dict, dict]:
             elif isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) and len(target.elts) == len(value.elts):
                 pairs = list(zip(target.elts, value.elts))
         worked = [(t.id, v, _number(v, known)) for t, v in pairs if isinstance(t, ast.Name)]
-        for node in ast.walk(statement):   # every name the statement binds is unknown, then set again
+        for node in walk(statement):   # every name the statement binds is unknown, then set again
             if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
                 known.pop(node.id, None)
                 made.pop(node.id, None)
@@ -1072,7 +1073,7 @@ def _one_point(fn, name: str, given: dict) -> bool:
     there is one point, a row, where another parameter's (3,) vector (`t`) is a column."""
     parameters = [a.arg for a in fn.args.args]
     source = name if name in given else next(
-        (n.id for node in ast.walk(fn) if isinstance(node, ast.Assign) and any(
+        (n.id for node in walk(fn) if isinstance(node, ast.Assign) and any(
             isinstance(t, ast.Name) and t.id == name for t in node.targets)
          for n in [_unwrapped(node.value)] if isinstance(n, ast.Name)), name)
     return source in parameters and ("point" in source.lower() or source.lower() in ("pts", "x", "xw", "world"))
@@ -1102,7 +1103,7 @@ def _reassigned(fn, name: str, line: int) -> bool:
         targets = node.targets if isinstance(node, ast.Assign) else \
             [node.target] if isinstance(node, (ast.AugAssign, ast.AnnAssign, ast.For)) else []
         for target in targets:
-            if any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(target)) and node.lineno < line:
+            if any(isinstance(n, ast.Name) and n.id == name for n in walk(target)) and node.lineno < line:
                 return True
     return False
 
@@ -1112,7 +1113,7 @@ def _assignments(fn, name: str, line: int) -> list[ast.AST]:
     any in a loop holding ``line``."""
     loops = [n for n in _own_nodes(fn) if isinstance(n, (ast.For, ast.While))
              and n.lineno <= line <= getattr(n, "end_lineno", n.lineno)]
-    inside = {id(n) for loop in loops for n in ast.walk(loop)}
+    inside = {id(n) for loop in loops for n in walk(loop)}
     found = []
     for node in _own_nodes(fn):
         if isinstance(node, ast.Assign):
@@ -1125,7 +1126,7 @@ def _assignments(fn, name: str, line: int) -> list[ast.AST]:
             targets = [item.optional_vars for item in node.items if item.optional_vars is not None]
         else:
             continue
-        if any(isinstance(n, ast.Name) and n.id == name for t in targets for n in ast.walk(t)) \
+        if any(isinstance(n, ast.Name) and n.id == name for t in targets for n in walk(t)) \
                 and (node.lineno < line or id(node) in inside):
             found.append(node)
     return found

@@ -13,7 +13,7 @@ from __future__ import annotations
 import ast
 import functools
 
-from ..loading.parsing import parse
+from ..loading.parsing import parse, walk
 from .claims import from_code
 
 MISTAKE = "a parameter compared with a string the API spells otherwise"
@@ -25,10 +25,10 @@ def _compared(functions) -> list[tuple[str, str, int, str]]:
     found = []
     for function in (f for f in functions if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))):
         parameters = {a.arg for a in function.args.posonlyargs + function.args.args + function.args.kwonlyargs}
-        rebound = {t.id for n in ast.walk(function) if isinstance(n, (ast.Assign, ast.AugAssign, ast.AnnAssign))
+        rebound = {t.id for n in walk(function) if isinstance(n, (ast.Assign, ast.AugAssign, ast.AnnAssign))
                    for target in (n.targets if isinstance(n, ast.Assign) else [n.target])
-                   for t in ast.walk(target) if isinstance(t, ast.Name)}
-        for node in ast.walk(function):
+                   for t in walk(target) if isinstance(t, ast.Name)}
+        for node in walk(function):
             if not isinstance(node, ast.Compare):
                 continue
             sides = [node.left, *node.comparators]

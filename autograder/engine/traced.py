@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..loading.parsing import parse
+from ..loading.parsing import copy_tree, parse, walk
 from .claims import from_code, measured
 from .forms import EXCEPTION_FORMS, Form
 from .recorder import SMALL_ARRAY as SMALL   # (the recorder's own bound: it is sent with it)
@@ -149,8 +149,8 @@ class _Recording(ast.NodeTransformer):
 
 def _local_names(fn: ast.AST) -> frozenset[str]:
     """The names a def binds itself (its parameters, what it assigns): the ones worth recording."""
-    names = {a.arg for a in ast.walk(fn) if isinstance(a, ast.arg)}   # (a nested def's too)
-    names |= {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    names = {a.arg for a in walk(fn) if isinstance(a, ast.arg)}   # (a nested def's too)
+    names |= {n.id for n in walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
     return frozenset(names)
 
 
@@ -165,11 +165,9 @@ def recording_source(code, function: str) -> str | None:
     reached = code.reachable([function])
     if not reached or reached[0].name != function:
         return None
-    import copy
-
     defs = []
     for fn in reached:
-        rewritten = _Recording(_local_names(fn)).visit(copy.deepcopy(fn))
+        rewritten = _Recording(_local_names(fn)).visit(copy_tree(fn))
         defs.append(ast.unparse(ast.fix_missing_locations(rewritten)))
     recorder = _RECORDER.read_text(encoding="utf-8")
     return recorder + "\n\n" + "\n\n".join(defs) + f"\n\n__ag_target__ = {function!r}\n"
@@ -314,7 +312,7 @@ def _quote(node, limit: int = 60) -> str:
 def _statement_at(fn, line: int):
     """The innermost statement of ``fn`` running ``line``: its own expressions, not its body's."""
     found = None
-    for node in ast.walk(fn):
+    for node in walk(fn):
         if isinstance(node, ast.stmt) and node is not fn and node.lineno <= line <= (node.end_lineno or node.lineno):
             if found is None or node.lineno >= found.lineno and (node.end_lineno or 0) <= (found.end_lineno or 0):
                 found = node
@@ -483,7 +481,7 @@ def _channels_stacked(fn, line: int, a, sa, b, sb) -> str:
         given = _last_given(fn, long_.id, line)
         if given is None or not isinstance(given[0], ast.Call) or _called_name(given[0]) not in _STACKS:
             continue
-        copies = [n for n in ast.walk(given[0]) if isinstance(n, ast.Name)
+        copies = [n for n in walk(given[0]) if isinstance(n, ast.Name)
                   and n.id not in {"np", "numpy", "cv2"}]
         if len({n.id for n in copies}) != 1:
             continue   # (made of several arrays: channels of their own, not copies of one)
@@ -545,7 +543,7 @@ def _made_of(fn, name: str, line: int, depth: int = 5) -> list[ast.AST]:
                     and statement.func.attr in ("append", "extend", "insert") \
                     and isinstance(statement.func.value, ast.Name) and statement.func.value.id in frontier:
                 values += statement.args
-        nodes = [n for v in values for n in ast.walk(v)]
+        nodes = [n for v in values for n in walk(v)]
         found += nodes
         frontier = sorted({n.id for n in nodes if isinstance(n, ast.Name)} - names - {"np", "numpy", "cv2"})
         names.update(frontier)
@@ -612,7 +610,7 @@ def _assigned_named(recording, statement, given, into, where, fn=None) -> Form |
         bounds = [(b, recording.number(b)) for b in _slice_bounds(target.slice)]
         known = [f"{_quote(b)} = {v:g}" for b, v in bounds if v is not None and not isinstance(b, ast.Constant)]
         said += f" ({', '.join(known[:4])})" if known else ""
-        for sliced in (n for n in ast.walk(statement.value) if isinstance(n, ast.Subscript)):
+        for sliced in (n for n in walk(statement.value) if isinstance(n, ast.Subscript)):
             # (the value's own slice given a negative bound: `right[:, :width - d]` with d past the width keeps
             # all but the last columns, where none were meant)
             for bound in _slice_bounds(sliced.slice):
@@ -735,7 +733,7 @@ def _masked_assignment_named(recording, statement, where) -> Form | None:
     shape, value = recording.shape(mask), recording.shape(statement.value)
     if shape is None or value is None or tuple(value) != tuple(shape):
         return None
-    whole = [node for node in ast.walk(statement.value)
+    whole = [node for node in walk(statement.value)
              if isinstance(node, ast.Name) and recording.shape(node) is not None and tuple(recording.shape(node)) == tuple(shape)]
     # (measured: the recording's shapes of the mask, the right side and the array named in it)
     select = measured(f": select the same entries on the right too, `{whole[0].id}[{mask.id}]`") if whole else \
@@ -779,7 +777,7 @@ def _mask_index_named(recording, expressions, fn, line: int, where) -> Form | No
         # (the arrays of the function as long as the mask is, which it was likely made for: `in1[front]` where
         # `matched1[front]` indexes the matches from before RANSAC kept its inliers)
         fitting = list(dict.fromkeys(
-            n.id for n in sorted((n for n in ast.walk(fn) if isinstance(n, ast.Name)), key=lambda n: (n.lineno, n.col_offset))
+            n.id for n in sorted((n for n in walk(fn) if isinstance(n, ast.Name)), key=lambda n: (n.lineno, n.col_offset))
             if n.id not in (getattr(node.value, "id", None), getattr(node.slice, "id", None))
             and (recording.shape(n) or (None,))[0] == mask[0] and tuple(recording.shape(n)[1:]) == tuple(shape[1:])))[:3]
         if fitting:
@@ -803,8 +801,8 @@ def _item_named(recording, expressions, where) -> Form | None:
             continue
         numbered = f"numbered 0 to {size - 1}" if size else "none at all"
         # (an index counted in steps -- `angle // 90` -- and never wrapped: the table is meant to be gone round)
-        counted = any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.FloorDiv) for n in ast.walk(node.slice)) \
-            and not any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Mod) for n in ast.walk(node.slice))
+        counted = any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.FloorDiv) for n in walk(node.slice)) \
+            and not any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Mod) for n in walk(node.slice))
         wraps = f"; a count of steps goes round a table of {size} taken `% {size}`" if counted and size else ""
         return Form(f"{_quote(node.slice)} is {int(index)} in {_quote(node)} {where}: {_quote(node.value)} holds "
                     f"{size} item{'s' if size != 1 else ''}, {numbered}{wraps}", INDEX)
@@ -879,7 +877,7 @@ def _let_in_by(fn, statement, array, shape) -> str:
     "" otherwise."""
     if fn is None or statement is None or not isinstance(array, ast.Name):
         return ""
-    parents = {id(child): parent for parent in ast.walk(fn) for child in ast.iter_child_nodes(parent)}
+    parents = {id(child): parent for parent in walk(fn) for child in ast.iter_child_nodes(parent)}
     branches, node = [], statement   # (the ifs whose body holds the statement, innermost first)
     while id(node) in parents:
         parent = parents[id(node)]
@@ -890,9 +888,9 @@ def _let_in_by(fn, statement, array, shape) -> str:
         # (the array tested is the one indexed only where the branch sets it nowhere before that line)
         before = [s for s in branch.body if s.lineno < statement.lineno]
         if any(isinstance(n, ast.Name) and n.id == array.id and isinstance(n.ctx, ast.Store)
-               for s in before for n in ast.walk(s)):
+               for s in before for n in walk(s)):
             continue
-        for size in ast.walk(branch.test):
+        for size in walk(branch.test):
             if isinstance(size, ast.Subscript) and isinstance(size.value, ast.Attribute) and size.value.attr == "shape" \
                     and isinstance(size.value.value, ast.Name) and size.value.value.id == array.id \
                     and isinstance(size.slice, (ast.Constant, ast.UnaryOp)):
@@ -1028,7 +1026,7 @@ def _element_for(target, value, name):
             if isinstance(value, (ast.Tuple, ast.List)) and len(value.elts) == len(target.elts):
                 found = _element_for(part, value.elts[i], name)
             else:
-                found = value if name in {n.id for n in ast.walk(part) if isinstance(n, ast.Name)} else None
+                found = value if name in {n.id for n in walk(part) if isinstance(n, ast.Name)} else None
             if found is not None:
                 return found
     return None
@@ -1177,7 +1175,7 @@ def _children(node) -> list[ast.AST]:
 def _assignment_giving(fn, name, recording, got, before):
     """The latest assignment of ``name`` before ``before`` whose value the recording shows with shape ``got``."""
     found = None
-    for statement in ast.walk(fn):
+    for statement in walk(fn):
         if isinstance(statement, (ast.Assign, ast.AnnAssign)) and statement.value is not None \
                 and statement.lineno < before.lineno \
                 and any(isinstance(t, ast.Name) and t.id == name.id
@@ -1607,8 +1605,6 @@ def undo_text(node, relation: str) -> str:
 def undone(fn, node, relation: str) -> str | None:
     """The source of ``fn`` with ``node``'s value turned back by ``relation`` (``(expr).T`` for a
     transpose, ``(expr) / 2.0`` for twice), or None."""
-    import copy
-
     wrapped = undo_text(node, relation)
     key = node_key(node)
 
@@ -1618,7 +1614,7 @@ def undone(fn, node, relation: str) -> str | None:
                 return parse(wrapped, mode="eval").body
             return super().generic_visit(child)
 
-    changed = Swap().visit(copy.deepcopy(fn))
+    changed = Swap().visit(copy_tree(fn))
     return ast.unparse(ast.fix_missing_locations(changed))
 
 

@@ -20,6 +20,7 @@ from typing import Callable
 import numpy as np
 
 from .hints import Predicate, code_of
+from ..loading.parsing import walk
 
 LOCATION_INDICES = (2, 3)   # minMaxLoc returns (minVal, maxVal, minLoc, maxLoc)
 
@@ -44,7 +45,7 @@ def _reads_minmaxloc_location(function) -> bool:
     """``cv2.minMaxLoc(x)[2]``, ``_, _, loc, _ = cv2.minMaxLoc(x)`` (a location bound to a
     name other than ``_``), or ``r = cv2.minMaxLoc(x)`` and then ``r[3]``."""
     bound = set()
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Subscript) and _is_minmaxloc(node.value) \
                 and _index(node.slice) in LOCATION_INDICES:
             return True
@@ -56,7 +57,7 @@ def _reads_minmaxloc_location(function) -> bool:
                 if isinstance(target, ast.Name):
                     bound.add(target.id)
     return any(isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in bound
-               and _index(node.slice) in LOCATION_INDICES for node in ast.walk(function))
+               and _index(node.slice) in LOCATION_INDICES for node in walk(function))
 
 
 @dataclass(frozen=True)
@@ -80,7 +81,7 @@ def _opencv_call(name: str, passing: str | None = None) -> Predicate:
         return any(isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == name
                    and isinstance(node.func.value, ast.Name) and node.func.value.id in ("cv2", "cv")
                    and (passing is None or any(k.arg == passing for k in node.keywords))
-                   for node in ast.walk(function))
+                   for node in walk(function))
     return Predicate(f"calls cv2.{name}" + (f" with {passing}=" if passing else ""), test)
 
 

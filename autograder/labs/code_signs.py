@@ -32,6 +32,7 @@ import numpy as np
 
 from ..engine.claims import calls_any, divides_by, from_code, takes_last_row_of_vt
 from ..engine.hints import Predicate, _path, calls, code_of, expr, mentions
+from ..loading.parsing import walk
 
 STEREO_MATCHER = (mentions("cv2.StereoBM") | mentions("cv2.StereoSGBM") | calls("cv2.StereoBM_create")
                   | calls("cv2.StereoSGBM_create")).saying("uses OpenCV's block matcher (cv2.StereoBM or StereoSGBM)")
@@ -45,13 +46,13 @@ def _of_the_range(node) -> bool:
     """Whether ``node`` involves the search range (``max_disparity``, ``numDisparities``, ``num_disp``):
     ``-(-(max_disparity + 1) // 16)`` rounds the range up to a multiple of 16, it divides no disparity."""
     return any(isinstance(n, ast.Name) and ("max" in n.id.lower() or "num" in n.id.lower() or "range" in n.id.lower())
-               for n in ast.walk(node))
+               for n in walk(node))
 
 
 def _divides_disparities_by_16(function) -> bool:
     """A division by 16 (``/``, ``//``, ``/=``, ``np.divide``, ``np.true_divide``, ``np.floor_divide``) of
     something other than the search range."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Div, ast.FloorDiv)) and _sixteen(node.right):
             if not _of_the_range(node.left):
                 return True
@@ -86,7 +87,7 @@ def zero_taken_for_missing(parameter: str) -> Predicate:
     def test(function) -> bool:
         if parameter not in _parameters(function):
             return False
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.BoolOp) and isinstance(node.op, ast.Or) and named(node.values[0]):
                 return True
             if isinstance(node, (ast.If, ast.IfExp)) and truth_test(node.test):
@@ -109,11 +110,11 @@ LINES_FROM_SIDES_ONLY = (_divides_by_name_or_entry(("b",), 1) & ~_divides_by_nam
 def _skips_zero_b(function) -> bool:
     """An ``if`` testing a line's ``b`` against zero (``b == 0``, ``abs(b) < 1e-12``, ``np.isclose(b, 0)``)
     whose body skips the line (``continue``): vertical lines are never drawn."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if not isinstance(node, ast.If) or not any(isinstance(n, ast.Continue) for n in node.body):
             continue
-        names = {n.id for n in ast.walk(node.test) if isinstance(n, ast.Name)}
-        numbers = [n.value for n in ast.walk(node.test) if isinstance(n, ast.Constant)
+        names = {n.id for n in walk(node.test) if isinstance(n, ast.Name)}
+        numbers = [n.value for n in walk(node.test) if isinstance(n, ast.Constant)
                    and isinstance(n.value, (int, float)) and not isinstance(n.value, bool)]
         if "b" in names and numbers and all(abs(v) < 1e-3 for v in numbers):
             return True
@@ -143,7 +144,7 @@ def _stacked(node) -> bool:
 def _products(function) -> list[ast.AST]:
     """The operands of every matrix product in ``function`` (``a @ b``, ``np.dot(a, b)``, ``a.dot(b)``)."""
     operands = []
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.MatMult, ast.Mult)):
             operands += [node.left, node.right]
         elif isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("dot", "matmul"):
@@ -154,9 +155,9 @@ def _products(function) -> list[ast.AST]:
 def _camera_without_k(function) -> bool:
     """A stacked ``[R | t]`` (or ``[I | 0]``) assigned to a name or passed on, that no product takes."""
     multiplied = _products(function)
-    multiplied_names = {n.id for operand in multiplied for n in ast.walk(operand) if isinstance(n, ast.Name)}
-    multiplied_nodes = {id(n) for operand in multiplied for n in ast.walk(operand)}
-    for node in ast.walk(function):
+    multiplied_names = {n.id for operand in multiplied for n in walk(operand) if isinstance(n, ast.Name)}
+    multiplied_nodes = {id(n) for operand in multiplied for n in walk(operand)}
+    for node in walk(function):
         if isinstance(node, ast.Assign) and _stacked(node.value) and id(node.value) not in multiplied_nodes:
             names = {t.id for t in node.targets if isinstance(t, ast.Name)}
             if names and not names & multiplied_names:
@@ -177,9 +178,9 @@ CAMERA_WITHOUT_K = (Predicate("builds a camera [R | t] without K", _camera_witho
 def _inverts_a_gram_matrix(function) -> bool:
     """The normal equations solved by an inverse: ``np.linalg.inv(A.T @ A)`` (a product with a transpose
     inside the inverse), where inverting a normalising transform (``np.linalg.inv(T)``) has none."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "inv" and node.args:
-            inside = list(ast.walk(node.args[0]))
+            inside = list(walk(node.args[0]))
             product = any((isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult))
                           or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("dot", "matmul"))
                           for n in inside)
@@ -205,11 +206,11 @@ TAKES_LAST_ROW_OF_VT = takes_last_row_of_vt()
 def _svd_in_a_loop(functions) -> bool:
     """Whether the functions read take an SVD inside a loop (or a comprehension): one system at a time."""
     for function in functions:
-        for loop in ast.walk(function):
+        for loop in walk(function):
             inside = loop.body if isinstance(loop, (ast.For, ast.While)) else \
                 [loop.elt] if isinstance(loop, (ast.ListComp, ast.GeneratorExp)) else []
             if any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("svd", "SVDecomp")
-                   for part in inside for n in ast.walk(part)):
+                   for part in inside for n in walk(part)):
                 return True
     return False
 

@@ -25,6 +25,7 @@ from ..engine.judges import (Probe, call_probe, digits_apart, entries_misplaced,
 from ..engine.hints import Predicate, _path, call_in_a_loop, calls, code_of, expr, mentions, uses_attr
 from ..engine.registry import Lab
 from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed
+from ..loading.parsing import walk
 
 lab = Lab("lab07", module="lab07_transformations", title="2D transformations")
 
@@ -51,7 +52,7 @@ def _sets_ones(function) -> bool:
 
     return any((isinstance(node, ast.Assign) and one(node.value)
                 and any(isinstance(target, ast.Subscript) for target in node.targets))
-               or (isinstance(node, (ast.List, ast.Tuple)) and row(node)) for node in ast.walk(function))
+               or (isinstance(node, (ast.List, ast.Tuple)) and row(node)) for node in walk(function))
 
 
 ONES_COLUMN = (calls_any("np.ones", "np.ones_like", "cv2.convertPointsToHomogeneous")
@@ -553,7 +554,7 @@ def _vector_laid_out(function) -> bool:
                 found.append((item.value.id, item.slice.value))
         return found
 
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, (ast.List, ast.Tuple)) and isinstance(node.ctx, ast.Load):
             picked = set(entries(node))
             if any(sum(name == other for other, _ in picked) >= 3 for name, _ in picked):
@@ -720,15 +721,15 @@ def _feeds_the_return(function, call: ast.Call) -> bool:
     """Whether ``call``'s value reaches a ``return`` of ``function``: returned as it is, or through the names
     assigned from it and from those, in the order the statements are written (one pass: linear in the def).
     A fit called only to compare with, or to check, is not what the function answers."""
-    carried, statements = set(), sorted((n for n in ast.walk(function) if isinstance(n, (ast.Assign, ast.Return))),
+    carried, statements = set(), sorted((n for n in walk(function) if isinstance(n, (ast.Assign, ast.Return))),
                                         key=lambda n: (n.lineno, n.col_offset))
     for statement in statements:
-        parts = list(ast.walk(statement.value)) if statement.value is not None else []
+        parts = list(walk(statement.value)) if statement.value is not None else []
         reached = any(p is call for p in parts) or any(isinstance(p, ast.Name) and p.id in carried for p in parts)
         if reached and isinstance(statement, ast.Return):
             return True
         if reached:
-            carried |= {n.id for target in statement.targets for n in ast.walk(target) if isinstance(n, ast.Name)}
+            carried |= {n.id for target in statement.targets for n in walk(target) if isinstance(n, ast.Name)}
     return False
 
 
@@ -736,7 +737,7 @@ def _other_model(t: Trial) -> str:
     """The sentence naming a fit of another family the student's affine_lstsq calls and answers with (read in
     its code), or ''."""
     for function in code_of(t).reachable(["affine_lstsq"]):
-        for node in ast.walk(function):
+        for node in walk(function):
             name = _path(node.func).rsplit(".", 1)[-1] if isinstance(node, ast.Call) else ""
             if name in OTHER_MODELS and _feeds_the_return(function, node):
                 return from_code(f" Your code fits {OTHER_MODELS[name]} (`cv2.{name}`, line {node.lineno}); the "

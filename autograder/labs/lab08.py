@@ -51,6 +51,7 @@ from ..engine.judges import (IMAGE_TOLERANCE, Probe, call_probe, digits_apart, f
                       where_points_differ)
 from ..engine.pictures import difference_heatmap, matches_picture, svg_points
 from ..engine.registry import Lab
+from ..loading.parsing import walk
 
 lab = Lab("lab08", module="lab08_homographies", title="Image homographies")
 lab.forbid("homography_dlt", "cv2.findHomography", "cv2.getPerspectiveTransform")
@@ -635,14 +636,14 @@ USES_RATIO = (expr("_.distance < ratio * _.distance") | expr("_.distance < _.dis
 
 def _ratio_tests(node) -> list:
     """The comparisons of ``node`` that are Lowe's test (``m.distance < r * n.distance``)."""
-    return [n for n in ast.walk(node) if isinstance(n, ast.Compare) and RATIO_TEST.holds([n])]
+    return [n for n in walk(node) if isinstance(n, ast.Compare) and RATIO_TEST.holds([n])]
 
 
 def _kept_by_the_test(function) -> list[tuple[ast.AST, str, str]]:
     """(the test, the name of the list kept, the element kept) of each list of ``function`` filled with the
     matches passing Lowe's test: ``good = [m for m, n in knn if <test>]``, ``if <test>: good.append(m)``."""
     kept = []
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Assign) and isinstance(node.value, (ast.ListComp, ast.GeneratorExp)):
             tests = [test for generator in node.value.generators for condition in generator.ifs
                      for test in _ratio_tests(condition)]
@@ -651,7 +652,7 @@ def _kept_by_the_test(function) -> list[tuple[ast.AST, str, str]]:
                 if tests and isinstance(target, ast.Name):
                     kept.append((tests[0], target.id, _path(element) if isinstance(element, ast.Name) else ""))
         if isinstance(node, ast.If) and _ratio_tests(node.test):
-            for call in (n for statement in node.body for n in ast.walk(statement)):
+            for call in (n for statement in node.body for n in walk(statement)):
                 if isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute) and call.func.attr == "append" \
                         and isinstance(call.func.value, ast.Name) and call.args:
                     element = call.args[0]
@@ -665,9 +666,9 @@ def _kept_matches_read(functions) -> bool:
     while all the matches are returned); True where no such list is written (nothing to contradict)."""
     for function in functions:
         for _, name, _ in _kept_by_the_test(function):
-            reads = [n for n in ast.walk(function) if isinstance(n, ast.Name) and n.id == name
+            reads = [n for n in walk(function) if isinstance(n, ast.Name) and n.id == name
                      and isinstance(n.ctx, ast.Load)]
-            appends = [n for n in ast.walk(function) if isinstance(n, ast.Attribute) and n.attr == "append"
+            appends = [n for n in walk(function) if isinstance(n, ast.Attribute) and n.attr == "append"
                        and isinstance(n.value, ast.Name) and n.value.id == name]
             if len(reads) <= len(appends):
                 return False
@@ -683,7 +684,7 @@ def _keeps_the_closer(functions) -> bool:
             if not sides or not element:
                 continue
             smaller = sides[0] if isinstance(test.ops[0], (ast.Lt, ast.LtE)) else sides[1]
-            closer = {n.value.id for n in ast.walk(smaller) if isinstance(n, ast.Attribute) and n.attr == "distance"
+            closer = {n.value.id for n in walk(smaller) if isinstance(n, ast.Attribute) and n.attr == "distance"
                       and isinstance(n.value, ast.Name)}
             if closer and element not in closer:
                 return False
@@ -694,7 +695,7 @@ def _fixed_distance_cut(functions) -> str:
     """A match distance compared with a fixed number (``m.distance < 64``, a cut-off from ORB's Hamming
     tutorials that drops most SIFT matches, whose L2 distances are in the hundreds), as written; "" if none."""
     for function in functions:
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Compare) and len(node.ops) == 1:
                 sides = (node.left, node.comparators[0])
                 if any(isinstance(side, ast.Attribute) and side.attr == "distance" for side in sides) and any(
@@ -856,7 +857,7 @@ MATCHES_CUT = "the matches are cut to a fixed number"
 def _cut_to(functions, count: int) -> str:
     """The slice ``x[:count]`` (or ``sorted(...)[:count]``) a function cuts a list to, as written; "" when none does."""
     for function in functions:
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Slice) and node.slice.lower is None \
                     and node.slice.step is None and isinstance(node.slice.upper, ast.Constant) \
                     and node.slice.upper.value == count:
@@ -902,10 +903,10 @@ RATIOS_JUDGED = (0.5, 0.6)
 SHARE_TOLERANCE = 0.03   # the mean share kept, off the test's own
 SQUARED_DISTANCES = "the ratio test compares squared distances (Lowe's test at sqrt(ratio))"
 SQUARED_TEST = Predicate("squares the distances it compares", lambda function: any(
-    isinstance(compare, ast.Compare) and any(isinstance(n, ast.Attribute) and n.attr == "distance" for n in ast.walk(compare))
+    isinstance(compare, ast.Compare) and any(isinstance(n, ast.Attribute) and n.attr == "distance" for n in walk(compare))
     and any((isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and isinstance(n.right, ast.Constant) and n.right.value == 2)
-            or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "square") for n in ast.walk(compare))
-    for compare in ast.walk(function)))
+            or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "square") for n in walk(compare))
+    for compare in walk(function)))
 
 
 @functools.lru_cache(maxsize=4)
@@ -1457,7 +1458,7 @@ def _keeps_the_best(t: Trial) -> bool:
     again and again: audit of 2026-12-06)."""
     def ordering(test) -> bool:
         return any(isinstance(node, ast.Compare) and any(isinstance(op, (ast.Gt, ast.GtE, ast.Lt, ast.LtE))
-                                                         for op in node.ops) for node in ast.walk(test))
+                                                         for op in node.ops) for node in walk(test))
 
     def chooses_the_largest(node) -> bool:
         if not isinstance(node, ast.Call):
@@ -1465,13 +1466,13 @@ def _keeps_the_best(t: Trial) -> bool:
         name = _path(node.func).rsplit(".", 1)[-1]
         return (name == "max" and any(k.arg == "key" for k in node.keywords)) or name in ("argmax", "nanargmax")
     for function in code_of(t).reachable(["homography_ransac"]):
-        if any(isinstance(loop, (ast.For, ast.While)) for loop in ast.walk(function)) \
-                and any(chooses_the_largest(node) for node in ast.walk(function)):
+        if any(isinstance(loop, (ast.For, ast.While)) for loop in walk(function)) \
+                and any(chooses_the_largest(node) for node in walk(function)):
             return True
-        for loop in ast.walk(function):
+        for loop in walk(function):
             if not isinstance(loop, (ast.For, ast.While)):
                 continue
-            for branch in ast.walk(loop):
+            for branch in walk(loop):
                 if isinstance(branch, ast.If) and ordering(branch.test) \
                         and any(isinstance(node, (ast.Assign, ast.AugAssign)) for node in branch.body):
                     return True
@@ -1490,10 +1491,10 @@ def _fixed_sample_counts(t: Trial) -> list[int]:
     it has none (a count from a variable, a while loop)."""
     def draws(loop) -> bool:
         return any(isinstance(node, ast.Call) and any(word in _path(node.func).lower() for word in _DRAWS)
-                   for node in ast.walk(loop))
+                   for node in walk(loop))
     counts = []
     for function in code_of(t).reachable(["homography_ransac"]):
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.For) and isinstance(node.iter, ast.Call) and _path(node.iter.func) == "range" \
                     and node.iter.args and draws(node):
                 bound = node.iter.args[0 if len(node.iter.args) == 1 else 1]
@@ -1538,7 +1539,7 @@ def fail_inverted_mask(t: Trial, what: str):
 SQUARED_THRESHOLD = Predicate("squares the threshold", lambda function: any(
     isinstance(n, ast.BinOp) and ((isinstance(n.op, ast.Pow) and _is_threshold(n.left))
                                   or (isinstance(n.op, ast.Mult) and _is_threshold(n.left) and _is_threshold(n.right)))
-    for n in ast.walk(function)))
+    for n in walk(function)))
 SQUARED_DISTANCE = (expr("_ ** 2 < _") | expr("_ ** 2 <= _") | expr("_ > _ ** 2") | expr("_ >= _ ** 2")).saying(
     "compares a squared value")
 
@@ -1550,7 +1551,7 @@ def _is_threshold(node) -> bool:
 def _root_of_summed_squares(function) -> bool:
     """A distance per pair written out: np.hypot, a norm along an axis, or a square root of a sum along an axis or
     of a sum of squares (``np.sqrt(np.sum(d ** 2, axis=1))``, ``np.sqrt(dx ** 2 + dy ** 2)``); read leniently."""
-    for n in ast.walk(function):
+    for n in walk(function):
         if not isinstance(n, ast.Call):
             continue
         name = _path(n.func).rsplit(".", 1)[-1]
@@ -1558,7 +1559,7 @@ def _root_of_summed_squares(function) -> bool:
             return True
         if name == "sqrt" and n.args and any(
                 (isinstance(m, ast.Call) and any(k.arg == "axis" for k in m.keywords))
-                or (isinstance(m, ast.BinOp) and isinstance(m.op, ast.Add)) for m in ast.walk(n.args[0])):
+                or (isinstance(m, ast.BinOp) and isinstance(m.op, ast.Add)) for m in walk(n.args[0])):
             return True
     return False
 
@@ -1765,7 +1766,7 @@ def _thresholds_after_the_refit(function) -> bool:
     first = min((call.lineno for call in fits), default=None)
     return first is not None and any(
         isinstance(node, ast.Compare) and node.lineno > first
-        and any(isinstance(n, ast.Name) and n.id == "threshold" for n in ast.walk(node)) for node in ast.walk(function))
+        and any(isinstance(n, ast.Name) and n.id == "threshold" for n in walk(node)) for node in walk(function))
 
 
 MASK_HINT = Hint("inliers = |H src - dst| < threshold, with the final H",
@@ -1956,7 +1957,7 @@ def _draws_in_a_loop(function) -> bool:
     return any(isinstance(node, (ast.For, ast.While)) and any(
         isinstance(call, ast.Call) and isinstance(call.func, (ast.Attribute, ast.Name))
         and (call.func.attr if isinstance(call.func, ast.Attribute) else call.func.id) in RANDOM_DRAWS
-        for call in ast.walk(node)) for node in ast.walk(function))
+        for call in walk(node)) for node in walk(function))
 
 
 OWN_RANSAC_LOOP = Predicate("draws samples in a loop and fits homography_dlt again on the inliers", kind="and", parts=(
@@ -2329,7 +2330,7 @@ def _stitcher_called(functions) -> str:
     """The OpenCV stitcher the functions read create or call (`cv2.Stitcher_create`, `cv2.Stitcher.create`,
     `cv2.createStitcher`), as written; "" when none."""
     for function in functions:
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Call) and "stitcher" in _path(node.func).lower() \
                     and _path(node.func).startswith(("cv2.", "cv.")):
                 return _path(node.func)
@@ -2340,13 +2341,13 @@ def _img1_only_shifted(function) -> bool:
     """Whether the code places img1 by a shift alone: warps it with a matrix whose names hold no H
     (`cv2.warpPerspective(img1, T, size)`), or copies it into a slice of the canvas."""
     def mentions_img1(node) -> bool:
-        return any(isinstance(n, ast.Name) and n.id == "img1" for n in ast.walk(node))
+        return any(isinstance(n, ast.Name) and n.id == "img1" for n in walk(node))
 
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in (
                 "warpPerspective", "warpAffine", "apply_homography") and len(node.args) >= 2 \
                 and mentions_img1(node.args[0]) and not any(
-                    isinstance(n, ast.Name) and ("H" in n.id or "homograph" in n.id.lower()) for n in ast.walk(node.args[1])):
+                    isinstance(n, ast.Name) and ("H" in n.id or "homograph" in n.id.lower()) for n in walk(node.args[1])):
             return True
         if isinstance(node, ast.Assign) and any(isinstance(t, ast.Subscript) for t in node.targets) \
                 and mentions_img1(node.value):
@@ -2364,13 +2365,13 @@ def _weights_never_divided(functions) -> tuple[str, int] | None:
     that nothing is divided by (``/``, ``/=``, np.divide, cv2.divide); None otherwise."""
     for function in functions:
         divisors = set()
-        for n in ast.walk(function):
+        for n in walk(function):
             if isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Div):
                 divisor = n.right if isinstance(n, ast.BinOp) else n.value
-                divisors |= {m.id for m in ast.walk(divisor) if isinstance(m, ast.Name)}
+                divisors |= {m.id for m in walk(divisor) if isinstance(m, ast.Name)}
             if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide" and len(n.args) >= 2:
-                divisors |= {m.id for m in ast.walk(n.args[1]) if isinstance(m, ast.Name)}
-        for n in ast.walk(function):
+                divisors |= {m.id for m in walk(n.args[1]) if isinstance(m, ast.Name)}
+        for n in walk(function):
             if isinstance(n, ast.AugAssign) and isinstance(n.op, ast.Add) and isinstance(n.target, ast.Name) \
                     and ("weight" in n.target.id.lower() or "wsum" in n.target.id.lower().replace("_", "")) \
                     and n.target.id not in divisors:
@@ -2491,17 +2492,17 @@ def _loop_counted(count: int) -> Predicate:
     reaches a list of the images or of their maps (`images[k]`, `homographies.append(...)`)."""
     def test(function) -> bool:
         lists = _list_names(function)
-        for loop in ast.walk(function):
+        for loop in walk(function):
             if not (isinstance(loop, ast.For) and isinstance(loop.target, ast.Name) and isinstance(loop.iter, ast.Call)
                     and isinstance(loop.iter.func, ast.Name) and loop.iter.func.id == "range" and len(loop.iter.args) == 1
                     and isinstance(loop.iter.args[0], ast.Constant) and loop.iter.args[0].value == count):
                 continue
             variable = loop.target.id
-            read = [n for statement in loop.body for n in ast.walk(statement)
+            read = [n for statement in loop.body for n in walk(statement)
                     if isinstance(n, ast.Name) and n.id == variable and isinstance(n.ctx, ast.Load)]
             channel = any(isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Tuple)
-                          and any(isinstance(n, ast.Name) and n.id == variable for n in ast.walk(node.slice))
-                          for node in ast.walk(loop))
+                          and any(isinstance(n, ast.Name) and n.id == variable for n in walk(node.slice))
+                          for node in walk(loop))
             if read and not channel and _reaches_a_list(loop, variable, lists):
                 return True
         return False
@@ -2515,9 +2516,9 @@ def _list_names(function) -> set:
     def made(value) -> bool:
         listed = isinstance(value, (ast.List, ast.ListComp)) or (
             isinstance(value, ast.Call) and isinstance(value.func, ast.Name) and value.func.id == "list")
-        return listed and not any(isinstance(n, ast.Call) and "split" in ast.unparse(n.func) for n in ast.walk(value))
+        return listed and not any(isinstance(n, ast.Call) and "split" in ast.unparse(n.func) for n in walk(value))
 
-    for node in ast.walk(function):
+    for node in walk(function):
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1):
             continue
         target, value = node.targets[0], node.value
@@ -2529,9 +2530,9 @@ def _list_names(function) -> set:
 
 def _reaches_a_list(loop, variable: str, lists: set) -> bool:
     """The loop indexes one of `lists` with its variable, or grows one of them."""
-    for node in ast.walk(loop):
+    for node in walk(loop):
         if (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in lists
-                and any(isinstance(n, ast.Name) and n.id == variable for n in ast.walk(node.slice))):
+                and any(isinstance(n, ast.Name) and n.id == variable for n in walk(node.slice))):
             return True
         if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in ("append", "insert")
                 and isinstance(node.func.value, ast.Name) and node.func.value.id in lists):
@@ -2568,9 +2569,9 @@ def _corners_of_every_image(functions) -> bool:
     ...]``): every image's, by whatever homography each is given."""
     warping = ("transform_points", "perspectiveTransform", "apply_h")
     for function in functions:
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, (ast.ListComp, ast.GeneratorExp, ast.For)) and any(
-                    isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in warping for n in ast.walk(node)) \
+                    isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in warping for n in walk(node)) \
                     and not any(_over_a_part(it) for it in _iterated(node)):
                 return True
     return False
@@ -2584,7 +2585,7 @@ def _iterated(node) -> list:
 def _over_a_part(iterable) -> bool:
     """Whether a loop goes over part of a list only: a slice of it (``images[1:]``, also inside ``zip`` or
     ``enumerate``), or a range that does not start at 0 or stops short (``range(1, n)``, ``range(len(x) - 1)``)."""
-    for node in ast.walk(iterable):
+    for node in walk(iterable):
         if isinstance(node, ast.Subscript) and isinstance(node.slice, ast.Slice) \
                 and (node.slice.upper is not None or (node.slice.lower is not None and not (
                     isinstance(node.slice.lower, ast.Constant) and node.slice.lower.value == 0))):
@@ -2876,7 +2877,7 @@ def _inverts_a_homography(function) -> bool:
     (`T2`, `K`, `T_norm`): a RANSAC helper's `inv(T2)` is no H inverted; `inv(pairwise(img2, img1))` is."""
     return any(isinstance(node, ast.Call) and ast.unparse(node.func).split(".")[-1] in ("inv", "pinv") and node.args
                and re.fullmatch(r"T\w*|K\w*|\w*(norm|shift|scale)\w*", ast.unparse(node.args[0])) is None
-               for node in ast.walk(function))
+               for node in walk(function))
 
 
 INVERSE_SECOND_WARP = guard(
@@ -3032,15 +3033,15 @@ def match_orb(t):
 # (nfeatures=300: 140; the best 30 % of a crossCheck match: 64). So it is a tip, worth no points.
 def _strings(function):
     """The string constants of ``function`` that are values (not a docstring or a bare string)."""
-    bare = {id(n.value) for n in ast.walk(function) if isinstance(n, ast.Expr)}
-    return (n.value for n in ast.walk(function)
+    bare = {id(n.value) for n in walk(function) if isinstance(n, ast.Expr)}
+    return (n.value for n in walk(function)
             if isinstance(n, ast.Constant) and isinstance(n.value, str) and id(n) not in bare)
 
 
 def _lsh_index(function) -> bool:
     """FLANN's LSH index: ``algorithm=6`` (a keyword or a dict entry), a name holding "LSH", or its
     ``table_number`` parameter."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and any(k.arg in ("algorithm", "table_number") and
                                               (k.arg == "table_number" or _is_six(k.value)) for k in node.keywords):
             return True
@@ -3058,7 +3059,7 @@ def _is_six(node) -> bool:
 
 def _hamming_by_number(function) -> bool:
     """A brute-force matcher given NORM_HAMMING or NORM_HAMMING2 by value (6, 7)."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("BFMatcher", "BFMatcher_create"):
             given = node.args[:1] + [k.value for k in node.keywords if k.arg == "normType"]
             if any(isinstance(g, ast.Constant) and g.value in (6, 7) and not isinstance(g.value, bool) for g in given):
@@ -3070,14 +3071,14 @@ def _default_bf(function) -> bool:
     """``cv2.BFMatcher()`` (or ``BFMatcher_create()``) given no norm: OpenCV's default is NORM_L2."""
     return any(isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("BFMatcher", "BFMatcher_create")
                and not node.args and not any(k.arg == "normType" for k in node.keywords)
-               for node in ast.walk(function))
+               for node in walk(function))
 
 
 def _float_matcher_by_name(function) -> bool:
     """``cv2.DescriptorMatcher_create("BruteForce")`` or "BruteForce-L1": a float norm by name."""
     return any(isinstance(node, ast.Call) and _path(node.func).endswith("DescriptorMatcher_create")
                and node.args and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)
-               and "hamming" not in node.args[0].value.lower() for node in ast.walk(function))
+               and "hamming" not in node.args[0].value.lower() for node in walk(function))
 
 
 ORB_CREATED = calls_any("cv2.ORB_create", "cv2.ORB.create", says="creates ORB features")
@@ -3118,7 +3119,7 @@ def orb_norm_advice(t):
 
 
 WTA_K_GIVEN = Predicate("gives ORB a WTA_K", lambda f: any(
-    isinstance(n, ast.keyword) and n.arg == "WTA_K" for n in ast.walk(f)))
+    isinstance(n, ast.keyword) and n.arg == "WTA_K" for n in walk(f)))
 
 
 @ext1.advice("ORB's default descriptors are matched with NORM_HAMMING, not NORM_HAMMING2")
@@ -3182,7 +3183,7 @@ def _pastes_an_image(function) -> bool:
     return any(isinstance(n, ast.Assign) and any(isinstance(t, ast.Subscript) and isinstance(t.slice, ast.Tuple)
                                                   and any(isinstance(e, ast.Slice) and (e.lower or e.upper)
                                                           for e in t.slice.elts) for t in n.targets)
-               for n in ast.walk(function))
+               for n in walk(function))
 
 
 def _builds_a_shift(function) -> bool:
@@ -3196,9 +3197,9 @@ def _builds_a_shift(function) -> bool:
         return isinstance(target, ast.Subscript) and isinstance(target.slice, ast.Tuple) \
             and len(target.slice.elts) == 2 and isinstance(target.slice.elts[1], ast.Constant) \
             and target.slice.elts[1].value in (2, -1)
-    return any(translation_literal(n) for n in ast.walk(function)) or any(
+    return any(translation_literal(n) for n in walk(function)) or any(
         isinstance(n, (ast.Assign, ast.AugAssign)) and any(
-            last_column(t) for t in (n.targets if isinstance(n, ast.Assign) else [n.target])) for n in ast.walk(function))
+            last_column(t) for t in (n.targets if isinstance(n, ast.Assign) else [n.target])) for n in walk(function))
 
 
 BUILDS_A_SHIFT = Predicate("builds a shift", _builds_a_shift)
@@ -3211,7 +3212,7 @@ def _builds_a_translation(function) -> bool:
     def constant(node, value) -> bool:
         return isinstance(node, ast.Constant) and node.value == value
 
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 3 and all(
                 isinstance(row, (ast.List, ast.Tuple)) and len(row.elts) == 3 for row in node.elts):
             (a, b, tx), (c, d, ty), last = (row.elts for row in node.elts)
@@ -3219,12 +3220,12 @@ def _builds_a_translation(function) -> bool:
                     and all(constant(v, w) for v, w in zip(last, (0, 0, 1))) \
                     and not (isinstance(tx, ast.Constant) and isinstance(ty, ast.Constant)):
                 return True
-    eyes = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and isinstance(n.value, ast.Call)
+    eyes = {t.id for n in walk(function) if isinstance(n, ast.Assign) and isinstance(n.value, ast.Call)
             and _path(n.value.func).rsplit(".", 1)[-1] in ("eye", "identity") for t in n.targets if isinstance(t, ast.Name)}
     return any(isinstance(n, (ast.Assign, ast.AugAssign)) and any(
         isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name) and t.value.id in eyes
         and isinstance(t.slice, ast.Tuple) and len(t.slice.elts) == 2 and constant(t.slice.elts[1], 2)
-        for t in (n.targets if isinstance(n, ast.Assign) else [n.target])) for n in ast.walk(function))
+        for t in (n.targets if isinstance(n, ast.Assign) else [n.target])) for n in walk(function))
 
 
 BUILDS_A_TRANSLATION = Predicate("builds a translation", _builds_a_translation)
@@ -3419,11 +3420,11 @@ def own_blur_band(functions) -> str:
     takes the next coarser level brought up. "" when the code has none."""
     for function in functions:
         blurred = {}   # name -> the expression it blurs
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
                     and _blurs(node.value) is not None:
                 blurred[node.targets[0].id] = _blurs(node.value)
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub):
                 of = _blurs(node.right) if not isinstance(node.right, ast.Name) else blurred.get(node.right.id)
                 if of is not None and ast.dump(of) == ast.dump(node.left):
@@ -3883,7 +3884,7 @@ SMOOTHING = {"pyrDown", "GaussianBlur", "blur", "boxFilter", "filter2D", "sepFil
 
 
 def _holds_any(node, names) -> bool:
-    return any(isinstance(n, ast.Name) and n.id in names for n in ast.walk(node))
+    return any(isinstance(n, ast.Name) and n.id in names for n in walk(node))
 
 
 def _bound(target) -> list[str]:
@@ -3929,7 +3930,7 @@ def mask_values(functions) -> dict[str, set[str]]:
         before = sum(map(len, held.values()))
         for name, function in by_name.items():
             names = held[name]
-            for node in ast.walk(function):
+            for node in walk(function):
                 bound = []
                 if isinstance(node, ast.Assign) and _holds_any(node.value, names):
                     bound = [n for target in node.targets for n in _bound(target)]
@@ -3968,7 +3969,7 @@ def _resize_kind(node, function) -> str:
         plain = any(isinstance(keywords.get(k), ast.Constant) and keywords[k].value in (False, 0)
                     for k in ("anti_aliasing", "order"))
         return "subsamples" if plain else "smooths"
-    area = any(isinstance(n, (ast.Name, ast.Attribute)) and _path(n).endswith("INTER_AREA") for n in ast.walk(node))
+    area = any(isinstance(n, (ast.Name, ast.Attribute)) and _path(n).endswith("INTER_AREA") for n in walk(node))
     return "smooths" if area else "subsamples"
 
 
@@ -3984,7 +3985,7 @@ def _mask_use(kind: str):
         held = mask_values(functions)
         for function in functions:
             names = held.get(function.name, set())
-            for node in ast.walk(function):
+            for node in walk(function):
                 if isinstance(node, ast.Call) and any(_holds_any(a, names) for a in node.args) \
                         and _resize_kind(node, function) == kind:
                     return True
@@ -4009,8 +4010,8 @@ def _mask_nodes(found: Callable, in_loops: bool = True) -> Callable:
         held = mask_values(functions)
         for function in functions:
             names = held.get(function.name, set())
-            places = [n for n in ast.walk(function) if isinstance(n, LOOPS)] if in_loops else [function]
-            if any(found(node, function, names) for place in places for node in ast.walk(place)):
+            places = [n for n in walk(function) if isinstance(n, LOOPS)] if in_loops else [function]
+            if any(found(node, function, names) for place in places for node in walk(place)):
                 return True
         return False
     return test
@@ -4029,9 +4030,9 @@ def _pyramid_of_mask(node, function, names) -> bool:
     called = _path(node.func).rsplit(".", 1)[-1]
     if called in PYRAMID_STEPS:
         return True
-    nested = [d for d in ast.walk(function) if isinstance(d, ast.FunctionDef) and d is not function and d.name == called]
+    nested = [d for d in walk(function) if isinstance(d, ast.FunctionDef) and d is not function and d.name == called]
     return any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in PYRAMID_STEPS
-               for d in nested for n in ast.walk(d))
+               for d in nested for n in walk(d))
 
 
 def _weighs_by_mask(node, function, names) -> bool:
@@ -4118,7 +4119,7 @@ def _divided_by_its_maximum(function) -> str:
             inner = node.args[0] if node.args and ast.unparse(node.func.value) in ("np", "numpy") else node.func.value
             return inner.id if isinstance(inner, ast.Name) else ""
         return ""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) and isinstance(node.left, ast.Name) \
                 and maximum_of(node.right) == node.left.id:
             return f"`{ast.unparse(node)}` (line {node.lineno})"

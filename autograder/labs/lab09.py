@@ -35,6 +35,7 @@ from ..engine.judges import (BLANK_CANVAS, BLANK_CANVAS_HINT, Probe, blank_canva
 from ..engine.pictures import svg_points
 from ..engine.registry import Lab
 from ..sandbox.beginner import RGB_ONLY_TO_SHOW, channels_reversed, integer_entries
+from ..loading.parsing import walk
 
 def _tangential_coefficient_swapped(function) -> bool:
     """Whether x's line gives p1 the term p2 belongs to (`x_t = ... p1 * (r2 + 2 * x ** 2)`), or y's line
@@ -42,7 +43,7 @@ def _tangential_coefficient_swapped(function) -> bool:
     y's square in x's line instead."""
     wanted = {"x": [expr("p1 * (_ + _ * x ** 2)"), expr("p1 * (_ + _ * x * x)")],
               "y": [expr("p2 * (_ + _ * y ** 2)"), expr("p2 * (_ + _ * y * y)")]}
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
             axis = node.targets[0].id[:1]
             if axis in wanted and any(pattern.test(node.value) for pattern in wanted[axis]):
@@ -84,10 +85,10 @@ PROJECTION_DIVISION_MISSING = guard(
 def _focal_in_third_row(function) -> bool:
     """A matrix written as a literal of three rows (3x3 or 3x4) whose third row holds ``f``: the focal
     length multiplies the third coordinate too, and the division by it takes f out again."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 3 and all(
                 isinstance(row, (ast.List, ast.Tuple)) and len(row.elts) in (3, 4) for row in node.elts):
-            if any(isinstance(n, ast.Name) and n.id == "f" for n in ast.walk(node.elts[2])):
+            if any(isinstance(n, ast.Name) and n.id == "f" for n in walk(node.elts[2])):
                 return True
     return False
 
@@ -1174,12 +1175,12 @@ def _seeds_the_generator(function) -> bool:
     """A ``np.random.default_rng`` given a value that is no constant (the seed passed in, not 0)."""
     return any(isinstance(node, ast.Call) and _resolved(node.func, _scope(function))[1] == "numpy.random.default_rng"
                and any(not isinstance(value, ast.Constant) for value in [*node.args, *(k.value for k in node.keywords)])
-               for node in ast.walk(function))
+               for node in walk(function))
 
 
 def _draws_from_np_random(function) -> bool:
     """A call of one of ``np.random``'s own functions (``np.random.normal``), not a generator's method."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call):
             kind, path = _resolved(node.func, _scope(function))
             if kind == "module" and path.startswith("numpy.random.") and path.rsplit(".", 1)[-1] not in GENERATORS:
@@ -1457,7 +1458,7 @@ def _other_drawings(functions) -> str:
     "" when there are none."""
     found = {}
     for function in functions:
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Call) and _hints_path(node.func).startswith(("cv2.", "cv.")) \
                     and _hints_path(node.func).rsplit(".", 1)[-1] in _DRAWINGS:
                 found.setdefault(_hints_path(node.func), node.lineno)
@@ -1467,9 +1468,9 @@ def _other_drawings(functions) -> str:
 def _return_in_a_loop(functions) -> int | None:
     """The line of a ``return`` in the body of a ``for`` or ``while`` loop (not in a function nested there)."""
     for function in functions:
-        for loop in ast.walk(function):
+        for loop in walk(function):
             if isinstance(loop, (ast.For, ast.While)):
-                for node in (n for statement in loop.body for n in ast.walk(statement)):
+                for node in (n for statement in loop.body for n in walk(statement)):
                     if isinstance(node, ast.Return):
                         return node.lineno
     return None
@@ -1598,9 +1599,9 @@ def _draws_on_the_callers_image(function) -> bool:
     rebound to a copy (``image = image.copy()`` draws on the copy after)."""
     image = _first_parameter(function)
     if not image or any(isinstance(n, ast.Assign) and any(isinstance(t, ast.Name) and t.id == image for t in n.targets)
-                        for n in ast.walk(function)):
+                        for n in walk(function)):
         return False
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and _hints_path(node.func).rsplit(".", 1)[-1] in DRAWING and node.args \
                 and isinstance(node.args[0], ast.Name) and node.args[0].id == image:
             return True
@@ -1612,11 +1613,11 @@ def _draws_on_the_callers_image(function) -> bool:
 
 def _returns_a_copy(function) -> bool:
     """A ``return`` of a name assigned a copy (``out = image.copy()``), or of the copy itself."""
-    copies = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and COPIES.holds([n.value])
+    copies = {t.id for n in walk(function) if isinstance(n, ast.Assign) and COPIES.holds([n.value])
               for t in n.targets if isinstance(t, ast.Name)}
     return any(isinstance(n, ast.Return) and n.value is not None
                and ((isinstance(n.value, ast.Name) and n.value.id in copies) or COPIES.holds([n.value]))
-               for n in ast.walk(function))
+               for n in walk(function))
 
 
 COPY_HINT = Hint(
@@ -1702,14 +1703,14 @@ def _bounds_test(functions) -> str:
     test of a point)."""
     for function in functions:
         params = [a.arg for a in function.args.args]
-        coordinates = set(params[1:2]) | {n.id for loop in ast.walk(function) if isinstance(loop, ast.For)
-                                          for n in ast.walk(loop.target) if isinstance(n, ast.Name)}
-        for node in ast.walk(function):
+        coordinates = set(params[1:2]) | {n.id for loop in walk(function) if isinstance(loop, ast.For)
+                                          for n in walk(loop.target) if isinstance(n, ast.Name)}
+        for node in walk(function):
             sides = [node.left, *node.comparators] if isinstance(node, ast.Compare) else []
             if any(isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE)) for op in getattr(node, "ops", ())) \
                     and any(isinstance(side, ast.Constant) and side.value == 0 and not isinstance(side.value, bool)
                             for side in sides) \
-                    and any(isinstance(n, ast.Name) and n.id in coordinates for side in sides for n in ast.walk(side)):
+                    and any(isinstance(n, ast.Name) and n.id in coordinates for side in sides for n in walk(side)):
                 return " ".join(ast.unparse(node).split())
     return ""
 
@@ -1781,18 +1782,18 @@ def _truncates_coordinates(function) -> bool:
     """An ``int(...)`` call on something other than a constant, the radius or the colour (a
     coordinate), in a function that rounds nothing (round, np.round, np.rint, np.around, np.floor)."""
     rounding = {"round", "np.round", "np.rint", "np.around", "np.floor", "numpy.round", "numpy.rint"}
-    if any(isinstance(node, ast.Call) and _hints_path(node.func) in rounding for node in ast.walk(function)):
+    if any(isinstance(node, ast.Call) and _hints_path(node.func) in rounding for node in walk(function)):
         return False
     def names(node) -> set[str]:
-        return {n.id.lower() for n in ast.walk(node) if isinstance(n, ast.Name)}
+        return {n.id.lower() for n in walk(node) if isinstance(n, ast.Name)}
 
     def other(name: str) -> bool:
         return any(word in name for word in ("radius", "color", "colour", "thick"))
 
     # names iterating over the colour or the radius (``tuple(int(c) for c in color)``) are not coordinates
-    others = set().union(*(names(node.target) for node in ast.walk(function)
+    others = set().union(*(names(node.target) for node in walk(function)
                            if isinstance(node, (ast.comprehension, ast.For)) and any(map(other, names(node.iter)))))
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "int" \
                 and len(node.args) == 1 and not isinstance(node.args[0], ast.Constant):
             read = names(node.args[0])
@@ -2009,9 +2010,9 @@ OBJECT_POINTS_ORDER = guessed("the object points are in the wrong order")
 def _pattern_read_rows_first(function) -> bool:
     """``rows, cols = pattern_size`` (or ``h, w``, ``ny, nx``) read from a name holding "pattern", or
     ``np.mgrid[0:p[1], 0:p[0]]``: pattern_size read as (rows, cols)."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Tuple) \
-                and any("pattern" in n.id for n in ast.walk(node.value) if isinstance(n, ast.Name)):
+                and any("pattern" in n.id for n in walk(node.value) if isinstance(n, ast.Name)):
             first = node.targets[0].elts[0]
             if isinstance(first, ast.Name) and (first.id.lower() in ROWS_FIRST or first.id.lower().startswith("row")):
                 return True
@@ -2022,7 +2023,7 @@ def _corners_asked_cols_first(function) -> bool:
     """Whether every cv2.findChessboardCorners call is given the pattern as pattern_size comes, (cols,
     rows): a name holding "pattern", or a pair whose first item is not a count of rows (``(rows, cols)``,
     ``(h, w)``, ``(p[1], p[0])`` are); read leniently (anything else counts as given rightly)."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if not (isinstance(node, ast.Call) and _hints_path(node.func).endswith(("findChessboardCorners",
                                                                                   "findChessboardCornersSB"))):
             continue
@@ -2041,13 +2042,13 @@ def _views_appended_apart(function) -> bool:
     """Object points and corners appended in different blocks (one under ``if found:``, the other not):
     a view's object points may then go with another view's corners, or with none."""
     blocks = {"obj": set(), "corner": set()}
-    for parent in ast.walk(function):
+    for parent in walk(function):
         for field in ("body", "orelse"):
             for statement in getattr(parent, field, []) if isinstance(getattr(parent, field, None), list) else []:
-                for node in ast.walk(statement) if isinstance(statement, ast.Expr) else []:
+                for node in walk(statement) if isinstance(statement, ast.Expr) else []:
                     if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) \
                             and node.func.attr == "append" and node.args:
-                        held = " ".join(n.id.lower() for n in ast.walk(node.args[0]) if isinstance(n, ast.Name))
+                        held = " ".join(n.id.lower() for n in walk(node.args[0]) if isinstance(n, ast.Name))
                         for kind, words in (("obj", ("obj",)), ("corner", ("corner", "img_p", "imgp", "pts"))):
                             if any(word in held for word in words):
                                 blocks[kind].add((id(parent), field))
@@ -2057,8 +2058,8 @@ def _views_appended_apart(function) -> bool:
 def _scales_by_square_size(function) -> bool:
     """A product with a name holding "square" (the parameter square_size, a copy of it); read leniently."""
     return any(isinstance(n, (ast.BinOp, ast.AugAssign)) and isinstance(n.op, ast.Mult)
-               and any(isinstance(m, ast.Name) and "square" in m.id.lower() for m in ast.walk(n))
-               for n in ast.walk(function))
+               and any(isinstance(m, ast.Name) and "square" in m.id.lower() for m in walk(n))
+               for n in walk(function))
 
 
 def _tests_a_found_flag(function) -> bool:
@@ -2067,8 +2068,8 @@ def _tests_a_found_flag(function) -> bool:
     def flag(test) -> bool:
         test = test.operand if isinstance(test, ast.UnaryOp) and isinstance(test.op, ast.Not) else test
         return isinstance(test, ast.Name) or isinstance(test, ast.Compare) and isinstance(test.left, ast.Name)
-    return any(isinstance(n, (ast.If, ast.IfExp)) and flag(n.test) for n in ast.walk(function)) or any(
-        isinstance(n, ast.comprehension) and any(flag(test) for test in n.ifs) for n in ast.walk(function))
+    return any(isinstance(n, (ast.If, ast.IfExp)) and flag(n.test) for n in walk(function)) or any(
+        isinstance(n, ast.comprehension) and any(flag(test) for test in n.ifs) for n in walk(function))
 
 
 OBJECT_POINTS_HINT = Hint(
@@ -2095,7 +2096,7 @@ GRID_MISCOUNTED = "the board's grid has another number of points than the corner
 def _float_step_grid(t: Trial) -> str:
     """The sentence naming an np.arange with a float step (the square's size) in calibrate's code, or ''."""
     for function in code_of(t).reachable(["calibrate"]):
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Call) and _hints_path(node.func).rsplit(".", 1)[-1] == "arange" \
                     and len(node.args) == 3 and not isinstance(node.args[2], ast.Constant):
                 return from_code(f" Your code makes the grid with `{ast.unparse(node)[:60]}` (line {node.lineno}): with a "
@@ -2309,8 +2310,8 @@ def _divides_a_norm(function) -> bool:
     ``np.linalg.norm(e) / n``): the error vector's length divided by its count, not its RMS."""
     return any(isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div)
                and any(isinstance(n, ast.Call) and _hints_path(n.func).rsplit(".", 1)[-1] == "norm"
-                       for n in ast.walk(node.left))
-               for node in ast.walk(function))
+                       for n in walk(node.left))
+               for node in walk(function))
 
 
 NORM_OVER_COUNT = Predicate("divides an error norm by a count", _divides_a_norm)
@@ -2337,7 +2338,7 @@ def calibration_consistent(t):
     shown = "far off" if recomputed > 1e3 else f"{recomputed:.3f} px"
     read = code_of(t).reachable(["calibrate"])
     reading = calls("cv2.getOptimalNewCameraMatrix").found(read)
-    calibrations = sum(1 for function in read for node in ast.walk(function) if isinstance(node, ast.Call)
+    calibrations = sum(1 for function in read for node in walk(function) if isinstance(node, ast.Call)
                        and _hints_path(node.func).rsplit(".", 1)[-1] == "calibrateCamera")
     # Named only with the cause the code shows: the disagreement alone has several (a K returned
     # transposed, another call's K or dist, a calibration of some of the views only, whose rms is
@@ -2360,7 +2361,7 @@ def calibration_consistent(t):
 def _fail_rms_above_detection(t: Trial, what: str, rms: float, recomputed: float) -> None:
     """The rms returned is above what any detection gives on these views while K and dist reproject the corners
     well: not cv2.calibrateCamera's RMS. Said with the square root the code takes of it, where it takes one."""
-    roots = [node for function in code_of(t).reachable(["calibrate"]) for node in ast.walk(function)
+    roots = [node for function in code_of(t).reachable(["calibrate"]) for node in walk(function)
              if isinstance(node, ast.Call) and _hints_path(node.func).rsplit(".", 1)[-1] == "sqrt"
              or isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.Constant)
              and node.right.value == 0.5]
@@ -2392,16 +2393,16 @@ def _fail_rms_below_detection(t: Trial, what: str, rms: float, corners) -> None:
 
 def _converted_names(function) -> set[str]:
     """Names ``function`` assigns a cv2.cvtColor result (``grey = cv2.cvtColor(view, ...)``)."""
-    return {t.id for n in ast.walk(function) if isinstance(n, ast.Assign)
+    return {t.id for n in walk(function) if isinstance(n, ast.Assign)
             and any(isinstance(c, ast.Call) and _hints_path(c.func).rsplit(".", 1)[-1] == "cvtColor"
-                    for c in ast.walk(n.value)) for t in n.targets if isinstance(t, ast.Name)}
+                    for c in walk(n.value)) for t in n.targets if isinstance(t, ast.Name)}
 
 
 def _unconverted_to_one_channel(functions) -> bool:
     """A cv2.cornerSubPix given a name no cv2.cvtColor result was stored in (the view as it came)."""
     for function in functions:
         converted = _converted_names(function)
-        for n in ast.walk(function):
+        for n in walk(function):
             if isinstance(n, ast.Call) and _hints_path(n.func).rsplit(".", 1)[-1] == "cornerSubPix" and n.args \
                     and isinstance(n.args[0], ast.Name) and n.args[0].id not in converted:
                 return True
@@ -2412,7 +2413,7 @@ def _size_of_three_channels(functions) -> bool:
     """cv2.calibrateCamera given ``view.shape[::-1]`` of a view not converted (3 entries for a colour view)."""
     for function in functions:
         converted = _converted_names(function)
-        for n in ast.walk(function):
+        for n in walk(function):
             if isinstance(n, ast.Call) and _hints_path(n.func).rsplit(".", 1)[-1] == "calibrateCamera" \
                     and len(n.args) > 2:
                 size = n.args[2]

@@ -38,6 +38,7 @@ from ..sandbox.beginner import RGB_FOR_BGR, channels_reversed
 from .code_signs import SOLVES_BY_SVD
 from .lab09 import (OBJECT_POINTS_ROW_BY_ROW, advise_nan_behind, call_behind, expect_points, judge_in_front, judge_points,
                     judge_single_point, make_points_probe, pinhole_formulas, point_error)
+from ..loading.parsing import walk
 
 lab = Lab("lab10", module="lab10_camera2", title="Geometric camera models (continued)")
 
@@ -88,16 +89,16 @@ def _flips_both_sides(function) -> bool:
     """K's columns and R's rows flipped by one sign vector: one matrix on the right of one product and the left
     of another (``K @ D``, ``D @ R``), both a column and a row negated (``K[:, i] *= -1``, ``R[i] *= -1``), or a
     sign vector broadcast over rows (``s[:, None] * R``, with ``K * s``)."""
-    right = {n.id for node in ast.walk(function) if (pair := _product_operands(node)) and isinstance(pair[1], ast.Name)
+    right = {n.id for node in walk(function) if (pair := _product_operands(node)) and isinstance(pair[1], ast.Name)
              for n in [pair[1]]}
-    left = {n.id for node in ast.walk(function) if (pair := _product_operands(node)) and isinstance(pair[0], ast.Name)
+    left = {n.id for node in walk(function) if (pair := _product_operands(node)) and isinstance(pair[0], ast.Name)
             for n in [pair[0]]}
-    signs = {t.id for node in ast.walk(function) if isinstance(node, ast.Assign)
+    signs = {t.id for node in walk(function) if isinstance(node, ast.Assign)
              and any(isinstance(n, (ast.Name, ast.Attribute)) and _path(n).rsplit(".", 1)[-1] in ("sign", "diag")
-                     for n in ast.walk(node.value)) for t in node.targets if isinstance(t, ast.Name)}
+                     for n in walk(node.value)) for t in node.targets if isinstance(t, ast.Name)}
     if right & left & signs:   # one sign matrix on both sides
         return True
-    parts = {_negated_part(node) for node in ast.walk(function)}
+    parts = {_negated_part(node) for node in walk(function)}
     if {"column", "row"} <= parts:
         return True
     return (expr("_[:, None] * _") | expr("_[:, np.newaxis] * _") | expr("_ * _[:, None]")).holds([function])
@@ -110,7 +111,7 @@ def _returns_the_fixed(function) -> bool:
     """A ``return`` of (K, R) each a product, or a name the function changes after it is first given a value (the
     sign fix: ``K = K @ D``, ``R[i] *= -1``)."""
     changed: dict[str, int] = {}
-    for node in ast.walk(function):
+    for node in walk(function):
         targets = node.targets if isinstance(node, ast.Assign) else [node.target] \
             if isinstance(node, ast.AugAssign) else []
         for target in targets:
@@ -118,7 +119,7 @@ def _returns_the_fixed(function) -> bool:
                     if isinstance(target, ast.Subscript) else target.elts if isinstance(target, ast.Tuple) else []:
                 if isinstance(name, ast.Name):
                     changed[name.id] = changed.get(name.id, 0) + (2 if isinstance(node, ast.AugAssign) else 1)
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Return) and isinstance(node.value, ast.Tuple) and len(node.value.elts) >= 2:
             first_two = node.value.elts[:2]
             if all(_product_operands(e) or isinstance(e, ast.BinOp)
@@ -149,10 +150,10 @@ SIGN_FIX = Hint(
 def _orthogonal_first(function) -> bool:
     """``R, K = scipy.linalg.rq(M)`` (or ``Q, K = ...``, cv2.RQDecomp3x3's): an RQ's first factor, the upper
     triangular one, stored under an orthogonal matrix's name."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Tuple) and node.targets[0].elts \
                 and any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("rq", "RQDecomp3x3")
-                        for n in ast.walk(node.value)):
+                        for n in walk(node.value)):
             first = node.targets[0].elts[0]
             if isinstance(first, ast.Name) and first.id.lower().startswith(("r", "q", "rot")):
                 return True
@@ -167,7 +168,7 @@ SIGNS_READ = (calls("np.sign") | expr("np.diag(_) < 0") | expr("_[_, _] < 0") | 
 def _rotations_written_out(function) -> bool:
     """A 3x3 rotation written out entry by entry (`np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])`): an
     RQ by Givens rotations, each meant to zero one entry below K's diagonal."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and _path(node.func) in ("np.array", "numpy.array") and node.args \
                 and isinstance(node.args[0], ast.List) and len(node.args[0].elts) == 3:
             entries = [e for row in node.args[0].elts if isinstance(row, ast.List) for e in row.elts]
@@ -214,21 +215,21 @@ def another_block_tested(functions) -> str:
             -1 if isinstance(columns.upper, ast.UnaryOp) and isinstance(columns.upper.operand, ast.Constant) \
             and columns.upper.operand.value == 1 else None
         return low == 0 and high in (3, -1)
-    tests = [n.test for f in functions for n in ast.walk(f) if isinstance(n, (ast.If, ast.IfExp))]
+    tests = [n.test for f in functions for n in walk(f) if isinstance(n, (ast.If, ast.IfExp))]
     for test in tests:
-        for call in ast.walk(test):
+        for call in walk(test):
             if isinstance(call, ast.Call) and _path(call.func).endswith("det") and call.args \
                     and isinstance(call.args[0], ast.Subscript) and not left_three(call.args[0].slice):
                 return ast.unparse(call)
     # (or a determinant compared with an exact value, `if np.linalg.det(R) == -1:` -- true only where rounding
     # leaves it so -- or the sign of one entry, `if P[2, 2] < 0: P = -P`: an entry's sign is no determinant's)
-    for branch in (n for f in functions for n in ast.walk(f) if isinstance(n, ast.If)):
+    for branch in (n for f in functions for n in walk(f) if isinstance(n, ast.If)):
         test = branch.test
         if isinstance(test, ast.Compare) and len(test.ops) == 1 and isinstance(test.ops[0], (ast.Eq, ast.NotEq)) \
                 and any(isinstance(side, ast.Call) and _path(side.func).endswith("det")
                         for side in (test.left, test.comparators[0])):
             return ast.unparse(test)
-    for branch in (n for f in functions for n in ast.walk(f) if isinstance(n, ast.If)):
+    for branch in (n for f in functions for n in walk(f) if isinstance(n, ast.If)):
         test = branch.test
         negates = any(isinstance(s, ast.Assign) and isinstance(s.value, ast.UnaryOp) and isinstance(s.value.op, ast.USub)
                       or isinstance(s, ast.AugAssign) and isinstance(s.op, ast.Mult)
@@ -484,12 +485,12 @@ ex3 = lab.exercise("ex3", "Orthographic projection", functions=["orthographic_pr
 def _dehomogenises(function) -> bool:
     """A division of a matrix product by its own last coordinate (`x = (M @ Xh.T).T`, then `x[:, :2] /
     x[:, 2:3]`): the lab sheet's x = P [X, 1] made Euclidean, right for any P (not the points' own Z)."""
-    products = {target.id for node in ast.walk(function) if isinstance(node, ast.Assign)
+    products = {target.id for node in walk(function) if isinstance(node, ast.Assign)
                 for target in node.targets if isinstance(target, ast.Name)
                 and any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)
                         or isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("dot", "matmul")
-                        for n in ast.walk(node.value))}
-    for node in ast.walk(function):
+                        for n in walk(node.value))}
+    for node in walk(function):
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Div) and isinstance(node.left, ast.Subscript) \
                 and isinstance(node.right, ast.Subscript) and isinstance(node.left.value, ast.Name) \
                 and isinstance(node.right.value, ast.Name) and node.left.value.id == node.right.value.id \
@@ -555,7 +556,7 @@ lab.forbid("camera_matrix_dlt", "cv2.calibrateCamera", "cv2.solvePnP", "cv2.solv
 def _twelve_columns(function) -> bool:
     """12 written where A is built: a constant 12 (``np.zeros((2 * n, 12))``) or a row of 12 entries."""
     return any((isinstance(n, ast.Constant) and n.value == 12) or (isinstance(n, (ast.List, ast.Tuple))
-                                                                  and len(n.elts) == 12) for n in ast.walk(function))
+                                                                  and len(n.elts) == 12) for n in walk(function))
 
 
 TWELVE_COLUMNS = Predicate("builds A with 12 columns", _twelve_columns)
@@ -1052,7 +1053,7 @@ PATTERN_AXES_HINT = Hint(
     instead="and your code {found}: check that pattern_size reaches cv2.findChessboardCorners "
             "as given.")
 def _projections(function) -> list[ast.Call]:
-    return [n for n in ast.walk(function) if isinstance(n, ast.Call)
+    return [n for n in walk(function) if isinstance(n, ast.Call)
             and _path(n.func).rsplit(".", 1)[-1] == "projectPoints"]
 
 
@@ -1060,7 +1061,7 @@ def _projects_in_order(function) -> bool:
     """A cv2.projectPoints call given five arguments not visibly out of order (no ``tvec`` where rvec goes, no
     ``dist`` where K goes, and the reverse)."""
     def named(node, *words) -> bool:
-        return any(isinstance(n, ast.Name) and any(w in n.id.lower() for w in words) for n in ast.walk(node))
+        return any(isinstance(n, ast.Name) and any(w in n.id.lower() for w in words) for n in walk(node))
     for call in _projections(function):
         given = list(call.args) + [k.value for k in call.keywords]
         if len(given) < 5:
@@ -1078,14 +1079,14 @@ def _returns_the_projection(function) -> bool:
     is stored in."""
     held = set()
     for _ in range(3):   # a few steps: projected, _ = cv2.projectPoints(...); out = projected.reshape(-1, 2)
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Assign) and (_projections(node.value) or any(
-                    isinstance(n, ast.Name) and n.id in held for n in ast.walk(node.value))):
-                held |= {n.id for target in node.targets for n in ast.walk(target) if isinstance(n, ast.Name)}
+                    isinstance(n, ast.Name) and n.id in held for n in walk(node.value))):
+                held |= {n.id for target in node.targets for n in walk(target) if isinstance(n, ast.Name)}
     return any(isinstance(node, ast.Return) and node.value is not None
                and (_projections(node.value) or any(isinstance(n, ast.Name) and n.id in held
-                                                    for n in ast.walk(node.value)))
-               for node in ast.walk(function))
+                                                    for n in walk(node.value)))
+               for node in walk(function))
 
 
 PROJECT_POINTS_HINT = Hint(
@@ -1868,11 +1869,11 @@ ext2 = lab.exercise("ext2", "Extension: dolly zoom", functions=["dolly_zoom(poin
 def _scales_points_by_a_ratio_to_z0(function) -> bool:
     """A product of the points (anything but a focal length) with a ratio to z0: `X * [1, 1, d / z0]`."""
     def reads(node, name):
-        return any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(node))
+        return any(isinstance(n, ast.Name) and n.id == name for n in walk(node))
 
     def over_z0(node):
-        return any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) and reads(n.right, "z0") for n in ast.walk(node))
-    for node in ast.walk(function):
+        return any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) and reads(n.right, "z0") for n in walk(node))
+    for node in walk(function):
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Mult):
             for side, other in ((node.left, node.right), (node.right, node.left)):
                 if over_z0(side) and not reads(other, "f0") and not reads(other, "f") and not over_z0(other):
@@ -2104,7 +2105,7 @@ def _triangular_factor(R) -> str:
 
 def _warm_started(function) -> bool:
     """cv2.solvePnP given a starting pose: ``useExtrinsicGuess=True`` (a keyword or the 7th argument)."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "solvePnP":
             given = [k.value for k in node.keywords if k.arg == "useExtrinsicGuess"] + node.args[6:7]
             if any(not (isinstance(v, ast.Constant) and not v.value) for v in given):

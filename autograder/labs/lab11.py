@@ -43,6 +43,7 @@ from ..loading.reading import outliers_selected
 from .code_signs import (CAMERA_WITHOUT_K, LINES_FROM_SIDES_ONLY, SKIPS_VERTICAL, SOLVES_BY_SVD, constant_factor, factor_words,
                          name_batched_vt_row)
 from .lab09 import COPY_HINT
+from ..loading.parsing import walk
 
 lab = Lab("lab11", module="lab11_two_view", title="Two-view geometry")
 
@@ -98,7 +99,7 @@ def repeated_column(functions) -> str:
     A row of A holds products of the two points' coordinates (three at least, as the misprinted row): a 3 x 3
     matrix written as 9 entries (`[s, 0, 0, 0, s, 0, 0, 0, 0]`, a skew matrix) is no row."""
     for function in functions:
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 9 and sum(
                     isinstance(e, ast.BinOp) and isinstance(e.op, ast.Mult) for e in node.elts) >= 3:
                 seen = {}
@@ -399,13 +400,13 @@ def _first_two(node) -> bool:
     """A slice ``[:2]``/``[0:2]`` (of a line's entries) in ``node``."""
     return any(isinstance(n, ast.Slice) and n.step is None and isinstance(n.upper, ast.Constant) and n.upper.value == 2
                and (n.lower is None or (isinstance(n.lower, ast.Constant) and n.lower.value == 0))
-               for n in ast.walk(node))
+               for n in walk(node))
 
 
 def _entry_numbers(node) -> set:
     """The constant last indices ``node`` reads entries by (``l[2]``, ``lines[:, 2]``: {2})."""
     numbers = set()
-    for n in ast.walk(node):
+    for n in walk(node):
         if isinstance(n, ast.Subscript):
             index = n.slice.elts[-1] if isinstance(n.slice, ast.Tuple) and n.slice.elts else n.slice
             if isinstance(index, ast.Constant) and isinstance(index.value, int):
@@ -416,7 +417,7 @@ def _entry_numbers(node) -> set:
 def _euclidean_of_a_b(function) -> bool:
     """sqrt(a^2 + b^2) of the lines' own first two entries: ``np.hypot``, a 2-norm (``np.linalg.norm`` without
     another ``ord``) or a square root of the first two entries or of two squares."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if not isinstance(node, ast.Call):
             continue
         last = _path(node.func).rsplit(".", 1)[-1]
@@ -429,7 +430,7 @@ def _euclidean_of_a_b(function) -> bool:
                 and node.args and _first_two(node.args[0]):
             return True
         squares = sum(isinstance(n, ast.BinOp) and (isinstance(n.op, ast.Pow) or (
-            isinstance(n.op, ast.Mult) and ast.dump(n.left) == ast.dump(n.right))) for arg in node.args for n in ast.walk(arg))
+            isinstance(n.op, ast.Mult) and ast.dump(n.left) == ast.dump(n.right))) for arg in node.args for n in walk(arg))
         if last == "sqrt" and node.args and (_first_two(node.args[0]) or squares >= 2):
             return True
     return False
@@ -1164,7 +1165,7 @@ def _nine_columns(function) -> bool:
     return any((isinstance(n, ast.Constant) and n.value == 9 and type(n.value) is int)
                or (isinstance(n, (ast.List, ast.Tuple)) and len(n.elts) == 9)
                or (isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("kron", "einsum", "outer"))
-               for n in ast.walk(function))
+               for n in walk(function))
 
 
 NINE_COLUMNS = Predicate("builds A with 9 columns", _nine_columns)
@@ -1448,7 +1449,7 @@ def _zeroes_the_last(function) -> bool | None:
         return isinstance(index, ast.Constant) and index.value == 2 or isinstance(index, ast.UnaryOp) \
             and isinstance(index.op, ast.USub) and isinstance(index.operand, ast.Constant) and index.operand.value == 1
     zeroed = []
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, ast.Assign) and zero(n.value):
             zeroed += [last(t.slice) for t in n.targets if isinstance(t, ast.Subscript)
                        and not isinstance(t.slice, (ast.Tuple, ast.Slice))]
@@ -1757,7 +1758,7 @@ def _fixed_tolerance(functions) -> str:
         return isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) \
             and not isinstance(node.value, bool) and abs(node.value) <= 1e-3
     for function in functions:
-        for node in ast.walk(function):
+        for node in walk(function):
             name = ast.unparse(node.func) if isinstance(node, ast.Call) else ""
             if name.rsplit(".", 1)[-1] in ("isclose", "allclose") and any(small(a) for a in node.args[1:2]):
                 return f"`{ast.unparse(node)}` (line {node.lineno})"
@@ -1823,7 +1824,7 @@ def _recover_pose_the_other_way(functions) -> str:
     """The call ``cv2.recoverPose(E, pts2, pts1, ...)`` as written, where its two point sets are twins given
     image 2's first (a name with a 2 before its twin with a 1); "" where none is."""
     for function in functions:
-        for node in ast.walk(function):
+        for node in walk(function):
             if isinstance(node, ast.Call) and _path(node.func).endswith("recoverPose") and len(node.args) >= 3:
                 first, second = (ast.unparse(a) for a in node.args[1:3])
                 if "2" in first and first.replace("2", "1") == second:
@@ -1925,7 +1926,7 @@ def judge_pipeline_F(t: Trial, pair, F):
 
 def _far_threshold(function) -> bool:
     """A cv2.findFundamentalMat given a threshold constant far from 1 px (above 3, or below 0.1)."""
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "findFundamentalMat":
             given = node.args[3:4] + [k.value for k in node.keywords if k.arg == "ransacReprojThreshold"]
             if any(isinstance(g, ast.Constant) and isinstance(g.value, (int, float)) and not 0.1 <= g.value <= 3
@@ -2000,21 +2001,21 @@ def _indexes_by_a_mask(function) -> bool:
     ``inliers = mask.ravel().astype(bool)``): a subscript whose index holds a name with "mask" or "inl" in it,
     or a name a findFundamentalMat/findEssentialMat result is stored in, and is boolean by its code. The
     estimators' masks are 0/1 uint8: ``pts1[mask.ravel()]`` picks points 0 and 1 over and over, keeping none."""
-    held = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and RANSAC_ESTIMATOR.holds([n.value])
-            for target in n.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
-    masks = {name: None for name in held} | {n.id: None for n in ast.walk(function)
+    held = {t.id for n in walk(function) if isinstance(n, ast.Assign) and RANSAC_ESTIMATOR.holds([n.value])
+            for target in n.targets for t in walk(target) if isinstance(t, ast.Name)}
+    masks = {name: None for name in held} | {n.id: None for n in walk(function)
                                              if isinstance(n, ast.Name) and "mask" in n.id.lower()}
-    if any(outliers_selected(n, masks) for n in ast.walk(function)):
+    if any(outliers_selected(n, masks) for n in walk(function)):
         return False   # (`mask.ravel() == 0` keeps the matches the mask rejects)
     boolean = _boolean_names(function)
     is_mask = lambda name: name in held or "mask" in name.lower() or "inl" in name.lower()  # noqa: E731
     # (and a name made of a mask: `keep = mask.ravel() == 1`, then `pts1[keep]`)
-    made_of_masks = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign)
-                     and any(isinstance(m, ast.Name) and is_mask(m.id) for m in ast.walk(n.value))
-                     for target in n.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+    made_of_masks = {t.id for n in walk(function) if isinstance(n, ast.Assign)
+                     and any(isinstance(m, ast.Name) and is_mask(m.id) for m in walk(n.value))
+                     for target in n.targets for t in walk(target) if isinstance(t, ast.Name)}
     return any(isinstance(n, ast.Subscript) and _is_boolean(n.slice, boolean) and any(
         isinstance(m, ast.Name) and (is_mask(m.id) or m.id in made_of_masks)
-        for m in ast.walk(n.slice)) for n in ast.walk(function))
+        for m in walk(n.slice)) for n in walk(function))
 
 
 _TO_INDICES = {"where", "nonzero", "flatnonzero", "argwhere"}
@@ -2024,7 +2025,7 @@ def _is_boolean(node, names) -> bool:
     """Whether an index is boolean (or positions) by its code: it holds a comparison, a conversion to
     bool, the positions of a mask's nonzero entries, a logical operation, or a name assigned one of those
     (`a & b` of two comparisons holds them)."""
-    for n in ast.walk(node):
+    for n in walk(node):
         if isinstance(n, (ast.Compare, ast.BoolOp)) or (isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.Not)):
             return True
         if isinstance(n, ast.Name) and n.id in names:
@@ -2043,12 +2044,12 @@ def _is_boolean(node, names) -> bool:
 def _boolean_names(function) -> set:
     """The names the function assigns a boolean index (:func:`_is_boolean`), through one another."""
     names: set = set()
-    assigned = [n for n in ast.walk(function) if isinstance(n, ast.Assign)]
+    assigned = [n for n in walk(function) if isinstance(n, ast.Assign)]
     for _ in range(3):
         before = len(names)
         for n in assigned:
             if _is_boolean(n.value, names):
-                names |= {t.id for target in n.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+                names |= {t.id for target in n.targets for t in walk(target) if isinstance(t, ast.Name)}
         if len(names) == before:
             break
     return names
@@ -2057,7 +2058,7 @@ def _boolean_names(function) -> set:
 def _points_in_order(function) -> bool | None:
     """The estimator (cv2.findFundamentalMat, cv2.findEssentialMat, cv2.recoverPose, cv2.triangulatePoints) given the
     points of image 1 before those of image 2: only names saying the reverse (a 2 before a 1) count as not done."""
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in (
                 "findFundamentalMat", "findEssentialMat", "recoverPose", "triangulatePoints"):
             # the points' names ending in 1 or 2 (camera matrices P1, P2 aside)

@@ -49,6 +49,7 @@ from ..engine.pictures import disparity_error_picture, disparity_picture, side_b
 from ..engine.registry import Lab
 from .code_signs import (DIVIDES_BY_16, STEREO_MATCHER, constant_factor, factor_words, name_batched_vt_row,
                          zero_taken_for_missing)
+from ..loading.parsing import walk
 
 # OpenCV's matcher called, its answer never divided by 16 (a sign, said with a measurement).
 STEREO_MATCHER_UNDIVIDED = (STEREO_MATCHER & ~DIVIDES_BY_16).saying(
@@ -76,7 +77,7 @@ guard(truth.THIRD_NOT_FOURTH, asks=FOURTH_COORDINATE,
 def _xor(function) -> bool:
     """``a ^ b`` or ``a ^= b`` written in ``function``."""
     return any(isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, ast.BitXor)
-               for node in ast.walk(function))
+               for node in walk(function))
 
 
 XORS = (Predicate("computes an XOR", _xor) | calls("np.bitwise_xor") | calls("np.logical_xor")).saying(
@@ -135,10 +136,10 @@ def _disparity_name(node) -> bool:
 def _stores_by_disparity(function) -> bool:
     """A cost stored at an index read from the disparity (``costs[d] = ...``, ``volume[:, :, d] = ...``), or costs
     collected in order (``.append``, ``np.stack``): read leniently."""
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, (ast.Assign, ast.AugAssign)):
             targets = n.targets if isinstance(n, ast.Assign) else [n.target]
-            if any(isinstance(t, ast.Subscript) and any(_disparity_name(m) for m in ast.walk(t.slice)) for t in targets):
+            if any(isinstance(t, ast.Subscript) and any(_disparity_name(m) for m in walk(t.slice)) for t in targets):
                 return True
         if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("append", "stack", "dstack", "array"):
             return True
@@ -148,7 +149,7 @@ def _stores_by_disparity(function) -> bool:
 def _marks_left_border(function) -> bool:
     """The columns x < d given a cost of their own (``np.inf``, a slice up to d, a test against d): read leniently;
     a slice from d on alone (``costs[d][:, d:] = ...``) leaves the columns before d as they were."""
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, (ast.Name, ast.Attribute)) and _path(n).rsplit(".", 1)[-1] in ("inf", "nan", "Inf", "NaN"):
             return True
         if isinstance(n, ast.Constant) and isinstance(n.value, (int, float)) and abs(n.value) >= 1e6:
@@ -188,10 +189,10 @@ def _shifts_by_disparity(function) -> bool:
     x - d, read leniently (any name starting with d or disp, any roll)."""
     return calls("np.roll").holds([function]) or any(
         isinstance(n, ast.BinOp) and isinstance(n.op, ast.Sub) and isinstance(n.right, ast.Name)
-        and n.right.id.lower().startswith("d") for n in ast.walk(function)) or any(
+        and n.right.id.lower().startswith("d") for n in walk(function)) or any(
         isinstance(n, ast.Slice) and any(isinstance(b, ast.UnaryOp) and isinstance(b.operand, ast.Name)
                                          and b.operand.id.lower().startswith("d") for b in (n.lower, n.upper))
-        for n in ast.walk(function))
+        for n in walk(function))
 
 
 def _parameters_read(function) -> tuple:
@@ -202,9 +203,9 @@ def _parameters_read(function) -> tuple:
     read = {name: {i} for i, name in enumerate(parameters)}
 
     def of(node) -> set:
-        return set().union(*[read.get(n.id, set()) for n in ast.walk(node) if isinstance(n, ast.Name)])
+        return set().union(*[read.get(n.id, set()) for n in walk(node) if isinstance(n, ast.Name)])
     pairs = []
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, ast.Assign):
             for target in n.targets:
                 if isinstance(target, ast.Tuple) and isinstance(n.value, ast.Tuple) \
@@ -222,7 +223,7 @@ def _parameters_read(function) -> tuple:
 def _computes_left_first(function) -> bool | None:
     """``matcher.compute(left, right)``: the first image read from the first parameter (left); False only where the
     first is read from the right image alone and the second from the left alone."""
-    computes = [n for n in ast.walk(function) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
+    computes = [n for n in walk(function) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
                 and n.func.attr == "compute" and len(n.args) >= 2]
     if not computes:
         return None
@@ -233,7 +234,7 @@ def _computes_left_first(function) -> bool | None:
 def _sixteens(function) -> bool:
     """A 16 written (numDisparities rounded to a multiple of 16); read leniently."""
     return any(isinstance(n, ast.Constant) and not isinstance(n.value, bool) and n.value in (16, 16.0)
-               for n in ast.walk(function))
+               for n in walk(function))
 
 
 # Code that calls OpenCV's matcher has its block search done: what is left to tell is what it is given and what
@@ -1102,7 +1103,7 @@ def orientation(H, shape) -> tuple[bool, bool, bool]:
 def _crosses_in_order(function) -> bool | None:
     """e2 = z x e1 and e3 = e1 x e2, in this order: a name assigned ``np.cross(z, e1)`` crossed after e1
     (``np.cross(e1, e2)``); code without a cross product of its own (cv2.stereoRectify) counts as doing it."""
-    crosses = [n for n in ast.walk(function) if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "cross"
+    crosses = [n for n in walk(function) if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "cross"
                and len(n.args) == 2]
     if not crosses:
         return None
@@ -1110,7 +1111,7 @@ def _crosses_in_order(function) -> bool | None:
 
     def second_axis(name, e1) -> bool:   # name holds np.cross(_, e1), perhaps divided by its norm afterwards
         return any(isinstance(m, ast.Call) and m in crosses and isinstance(m.args[1], ast.Name) and m.args[1].id == e1
-                   for v in values.get(name, []) for m in ast.walk(v))
+                   for v in values.get(name, []) for m in walk(v))
     return any(isinstance(n.args[0], ast.Name) and isinstance(n.args[1], ast.Name)
                and second_axis(n.args[1].id, n.args[0].id) for n in crosses)
 
@@ -1213,10 +1214,10 @@ def judge_rows(t: Trial, pair, H1, H2, what="rectify"):
 def _shared_by_products(function) -> bool:
     """A name in two separate matrix products (``K_new @ R_rect @ inv(K1)`` and ``K_new @ R_rect @ R @ inv(K2)``):
     one new rotation (and K) given to both cameras."""
-    inner = {id(n.left) for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)}
-    chains = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)
+    inner = {id(n.left) for n in walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)}
+    chains = [n for n in walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)
               and id(n) not in inner]
-    names = [{m.id for m in ast.walk(chain) if isinstance(m, ast.Name)} for chain in chains]
+    names = [{m.id for m in walk(chain) if isinstance(m, ast.Name)} for chain in chains]
     return any(sum(name in held for held in names) >= 2 for held in names for name in held)
 
 
@@ -1249,12 +1250,12 @@ def rectification_recipe(lead: str, *first: tuple) -> str:
 def _inverse_rightmost(function) -> bool:
     """A matrix product whose rightmost factor is an inverse (``K_new @ R_rect @ np.linalg.inv(K1)``, or a name
     assigned one): each map written with K^-1 applied first; read leniently (any inverse)."""
-    inverses = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and _is_inverse(n.value)
+    inverses = {t.id for n in walk(function) if isinstance(n, ast.Assign) and _is_inverse(n.value)
                 for t in n.targets if isinstance(t, ast.Name)}
     return any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)
                and (_is_inverse(n.right) or isinstance(n.right, ast.Name) and (n.right.id in inverses
                                                                                or "inv" in n.right.id.lower()))
-               for n in ast.walk(function))
+               for n in walk(function))
 
 
 def _is_inverse(node) -> bool:
@@ -1293,7 +1294,7 @@ def _outputs_out_of_order(function) -> bool:
 def _warps(function) -> list:
     """The ``cv2.warpPerspective`` calls of ``function``: (image, map) argument nodes."""
     found = []
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "warpPerspective":
             given = dict(enumerate(n.args[:2]))
             given.update({{"src": 0, "M": 1}[k.arg]: k.value for k in n.keywords if k.arg in ("src", "M")})
@@ -1303,7 +1304,7 @@ def _warps(function) -> list:
 
 
 def _names_in(node) -> set:
-    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+    return {n.id for n in walk(node) if isinstance(n, ast.Name)}
 
 
 def _warps_each_by_its_own(function) -> bool | None:
@@ -1322,7 +1323,7 @@ def _returns_its_warps(function) -> bool | None:
     """The last two values returned (H1, H2) are names the images were warped with (``return rect_l, rect_r, H1,
     H2`` after ``cv2.warpPerspective(img_l, H1, ...)``); code that cannot be read that way counts as doing it."""
     warped_with = {m.id for _, m in _warps(function) if isinstance(m, ast.Name)}
-    returns = [n.value for n in ast.walk(function) if isinstance(n, ast.Return) and isinstance(n.value, ast.Tuple)
+    returns = [n.value for n in walk(function) if isinstance(n, ast.Return) and isinstance(n.value, ast.Tuple)
                and len(n.value.elts) == 4]
     if not warped_with or not returns:
         return None
@@ -1539,7 +1540,7 @@ def _converts_colour(function) -> bool:
         isinstance(n, ast.Subscript) and isinstance(n.slice, ast.Tuple) and n.slice.elts
         and isinstance(n.slice.elts[-1], ast.Constant) and n.slice.elts[-1].value in (0, 1, 2)
         and (len(n.slice.elts) == 3 or isinstance(n.slice.elts[0], ast.Constant) and n.slice.elts[0].value is Ellipsis)
-        for n in ast.walk(function)) or keyword("np.mean", "axis", 2).holds([function]) \
+        for n in walk(function)) or keyword("np.mean", "axis", 2).holds([function]) \
         or keyword(".mean", "axis", 2).holds([function])
 
 
@@ -1843,13 +1844,13 @@ ROLLED = calls("np.roll")
 def _overwrites_rolled_columns(function) -> bool:
     """A rolled image's first d columns written over (``shifted = np.roll(right, d, axis=1)`` then
     ``shifted[:, :d] = ...``): the columns np.roll brought round are no longer there."""
-    rolled = {t.id for n in ast.walk(function) if isinstance(n, ast.Assign) and isinstance(n.value, ast.Call)
+    rolled = {t.id for n in walk(function) if isinstance(n, ast.Assign) and isinstance(n.value, ast.Call)
               and _path(n.value.func).rsplit(".", 1)[-1] == "roll" for t in n.targets if isinstance(t, ast.Name)}
     return any(isinstance(n, ast.Assign) and any(
         isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name) and t.value.id in rolled
         and any(isinstance(part, ast.Slice) and part.lower is None and _disparity_name(part.upper)
                 for part in (t.slice.elts if isinstance(t.slice, ast.Tuple) else [t.slice]))
-        for t in n.targets) for n in ast.walk(function))
+        for t in n.targets) for n in walk(function))
 
 
 WRAPPED_ROUND = ROLLED & ~Predicate("writes over the columns np.roll brings round", _overwrites_rolled_columns)
@@ -1861,7 +1862,7 @@ def _derived_from(function) -> dict:
     params = {a.arg for a in function.args.posonlyargs + function.args.args + function.args.kwonlyargs}
     made: dict = {name: {name} for name in params}
     bindings = []
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Assign):
             for target in node.targets:   # (`L, R = f(left), f(right)`: item by item)
                 paired = isinstance(target, (ast.Tuple, ast.List)) and isinstance(node.value, (ast.Tuple, ast.List)) \
@@ -1872,8 +1873,8 @@ def _derived_from(function) -> dict:
     bindings.sort(key=lambda pair: getattr(pair[1], "lineno", 0))
     for _ in range(2):
         for target, value in bindings:
-            reads = set().union(*(made.get(n.id, set()) for n in ast.walk(value) if isinstance(n, ast.Name)))
-            for name in (n.id for n in ast.walk(target) if isinstance(n, ast.Name)):
+            reads = set().union(*(made.get(n.id, set()) for n in walk(value) if isinstance(n, ast.Name)))
+            for name in (n.id for n in walk(target) if isinstance(n, ast.Name)):
                 made.setdefault(name, set()).update(reads)
     return made
 
@@ -1884,14 +1885,14 @@ def _left_image_rolled_back(function) -> str:
     shifted by +d, `np.roll(right, d, axis=1)`, compares left x with right x - d). The call, as
     written; "" when the code does not."""
     made = _derived_from(function)
-    rolls = [node for node in ast.walk(function)
+    rolls = [node for node in walk(function)
              if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "roll"]
     if len(rolls) != 1:   # (a cost rolled back by +d afterwards is indexed by the left image's pixels again)
         return ""
     for node in rolls:
         if len(node.args) >= 2:
             image, shift = node.args[:2]
-            origin = set().union(*(made.get(n.id, set()) for n in ast.walk(image) if isinstance(n, ast.Name)))
+            origin = set().union(*(made.get(n.id, set()) for n in walk(image) if isinstance(n, ast.Name)))
             if origin == {"left"} and isinstance(shift, ast.UnaryOp) and isinstance(shift.op, ast.USub):
                 return ast.unparse(node)
     return ""
@@ -2058,7 +2059,7 @@ def block_matching_uses_cost(t):
     if near:
         if near["ncc"] >= 0.9 and near["ncc"] > near["ssd"] + 0.2:
             capitals = any(isinstance(node, ast.Constant) and node.value in ("SSD", "NCC")
-                           for function in code_of(t).reachable(["block_matching"]) for node in ast.walk(function))
+                           for function in code_of(t).reachable(["block_matching"]) for node in walk(function))
             t.fail(measured(f"{what}: cost=\"ssd\" gives exactly the map cost=\"ncc\" gives, on a pair where the "
                             "two costs disagree (a change of brightness changes SSD, not NCC), and that map is NCC's "
                             f"({near['ncc']:.0%} of the pixels within 1 px of it, {near['ssd']:.0%} of SSD's): the "
@@ -2563,7 +2564,7 @@ def _converts_an_image(function) -> bool:
     (``left.astype(np.float64)``, ``np.float32(right)``, ``np.asarray(left, dtype=float)``)."""
     arguments = function.args.posonlyargs + function.args.args
     images = {a.arg for a in arguments[:2]}
-    for node in ast.walk(function):
+    for node in walk(function):
         if not isinstance(node, ast.Call):
             continue
         last = _path(node.func).rsplit(".", 1)[-1]
@@ -2572,7 +2573,7 @@ def _converts_an_image(function) -> bool:
             else node.args
         floating = last in FLOATS or any(_path(k).rsplit(".", 1)[-1] in FLOATS for k in kinds
                                          if isinstance(k, (ast.Name, ast.Attribute)))
-        if floating and any(isinstance(n, ast.Name) and n.id in images for g in given for n in ast.walk(g)):
+        if floating and any(isinstance(n, ast.Name) and n.id in images for g in given for n in walk(g)):
             return True
     return False
 
@@ -2667,7 +2668,7 @@ def _zero_default(function) -> bool:
     def zero(node) -> bool:
         return isinstance(node, ast.Constant) and not isinstance(node.value, bool) and node.value == 0
 
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, ast.Assign) and any(isinstance(t, ast.Name) and "smooth" in t.id.lower() for t in n.targets):
             value = n.value
             if zero(value) or isinstance(value, ast.IfExp) and zero(value.body) \
@@ -2719,7 +2720,7 @@ JUMP_COST_DIFFERS = ("the backtracking weighs a jump between disparities otherwi
 
 def _walks_back(function) -> bool:
     """A loop that runs backwards: `range(..., ..., -1)`, `reversed(...)`, or over `x[::-1]`."""
-    for loop in ast.walk(function):
+    for loop in walk(function):
         if not isinstance(loop, ast.For):
             continue
         iterated = loop.iter
@@ -2747,26 +2748,26 @@ def _chosen_from_the_left(functions) -> int | None:
     for function in functions:
         if _walks_back(function):
             return None
-        for loop in ast.walk(function):
+        for loop in walk(function):
             if not (isinstance(loop, ast.For) and isinstance(loop.target, ast.Name) and isinstance(loop.iter, ast.Call)
                     and isinstance(loop.iter.func, ast.Name) and loop.iter.func.id == "range"):
                 continue
             x = loop.target.id
-            for node in ast.walk(loop):
+            for node in walk(loop):
                 if not (isinstance(node, ast.Assign) and len(node.targets) == 1
                         and isinstance(node.targets[0], ast.Subscript) and isinstance(node.targets[0].value, ast.Name)):
                     continue
                 chosen, at = node.targets[0].value.id, ast.unparse(node.targets[0].slice)
                 if at != x or not any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "argmin"
-                                      for n in ast.walk(node.value)):
+                                      for n in walk(node.value)):
                     continue
                 # (directly, or through a name the loop makes from it: `jump = ramp[|d - d_prev[x - 1]|]`)
-                made = {t.id: m.value for m in ast.walk(loop) if isinstance(m, ast.Assign)
+                made = {t.id: m.value for m in walk(loop) if isinstance(m, ast.Assign)
                         for t in m.targets if isinstance(t, ast.Name)}
-                read = [node.value] + [made[n.id] for n in ast.walk(node.value)
+                read = [node.value] + [made[n.id] for n in walk(node.value)
                                        if isinstance(n, ast.Name) and n.id in made]
                 if any(isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and n.value.id == chosen
-                       and ast.unparse(n.slice).replace(" ", "") == f"{x}-1" for value in read for n in ast.walk(value)):
+                       and ast.unparse(n.slice).replace(" ", "") == f"{x}-1" for value in read for n in walk(value)):
                     return node.lineno
     return None
 
@@ -3115,7 +3116,7 @@ def _one_before(index, variable: str) -> bool:
     """Whether a subscript's index holds ``variable - 1`` (``x - 1``, ``[:, x - 1]``)."""
     return any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Sub) and isinstance(n.left, ast.Name)
                and n.left.id == variable and isinstance(n.right, ast.Constant) and n.right.value == 1
-               for n in ast.walk(index))
+               for n in walk(index))
 
 
 def recurrence_without_itself(functions) -> str:
@@ -3123,9 +3124,9 @@ def recurrence_without_itself(functions) -> str:
     not recur: `energy[x] = costs[x] + min(costs[x - 1] + ...)`), said as "`energy[x]` (line 12) is computed from
     `costs[x - 1]` and never from `energy[x - 1]`"; "" where no loop does so."""
     for function in functions:
-        for loop in (n for n in ast.walk(function) if isinstance(n, ast.For) and isinstance(n.target, ast.Name)):
+        for loop in (n for n in walk(function) if isinstance(n, ast.For) and isinstance(n.target, ast.Name)):
             variable = loop.target.id
-            body = [n for statement in loop.body for n in ast.walk(statement)]
+            body = [n for statement in loop.body for n in walk(statement)]
             before = {}   # name -> its first subscript one before (`costs[x - 1]`)
             for n in body:
                 if isinstance(n, ast.Subscript) and isinstance(n.ctx, ast.Load) and isinstance(n.value, ast.Name) \
@@ -3596,9 +3597,9 @@ def _both_bounds(function) -> bool:
     arguments = function.args.posonlyargs + function.args.args
     depth = arguments[0].arg if arguments else ""
     low = high = False
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, ast.Compare) and len(n.ops) == 1 and not any(
-                isinstance(m, ast.Name) and m.id == depth for m in ast.walk(n)):
+                isinstance(m, ast.Name) and m.id == depth for m in walk(n)):
             right = n.comparators[0]
             constant = right.value if isinstance(right, ast.Constant) and isinstance(right.value, (int, float)) else None
             if isinstance(n.ops[0], (ast.GtE, ast.Gt)) and constant in (0, -1):
@@ -3613,7 +3614,7 @@ def _both_bounds(function) -> bool:
 def _assigned_values(function) -> dict:
     """name -> the values the function assigns it."""
     values: dict = {}
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, ast.Assign):
             for target in n.targets:
                 if isinstance(target, ast.Name):
@@ -3626,7 +3627,7 @@ def _stripe_like(node, values, depth=0) -> bool:
     or through the names it reads."""
     if depth > 4:
         return False
-    for n in ast.walk(node):
+    for n in walk(node):
         if isinstance(n, ast.BinOp) and isinstance(n.op, (ast.FloorDiv, ast.LShift, ast.Pow)):
             return True
         if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] in ("floor_divide", "left_shift", "power"):
@@ -3644,7 +3645,7 @@ def _codes_the_stripe(function) -> bool | None:
     (``(column * 2**n) // width``); code that computes no Gray code itself (a helper in another function, the
     patterns indexed by column) counts as doing it."""
     values = _assigned_values(function)
-    codes = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.BitXor)
+    codes = [n for n in walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.BitXor)
              and isinstance(n.right, ast.BinOp) and isinstance(n.right.op, ast.RShift)]
     return all(_stripe_like(n.left, values) for n in codes) if codes else None
 
@@ -3653,10 +3654,10 @@ def _bits_in_order(function) -> bool | None:
     """Bits read most significant first, or bits read in a way this reading does not follow (counted as done):
     only a shift by the image's own index (``code >> i`` for ``i`` of ``range(n)``, the least significant first)
     counts as not done."""
-    loops = {n.target.id for n in ast.walk(function) if isinstance(n, (ast.For, ast.comprehension))
+    loops = {n.target.id for n in walk(function) if isinstance(n, (ast.For, ast.comprehension))
              and isinstance(n.target, ast.Name) and isinstance(n.iter, ast.Call)
              and _path(n.iter.func) == "range" and len(n.iter.args) == 1}
-    shifts = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.RShift)
+    shifts = [n for n in walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.RShift)
               and not (isinstance(n.right, ast.Constant) and n.right.value == 1)]
     return not all(isinstance(n.right, ast.Name) and n.right.id in loops for n in shifts) if shifts else None
 
@@ -3683,7 +3684,7 @@ def _divide_keyword(name: str, holds: Callable) -> Callable:
     def test(function) -> bool:
         return any(isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide"
                    and any(k.arg == name and (isinstance(k.value, ast.Name) or holds(k.value)) for k in n.keywords)
-                   for n in ast.walk(function))
+                   for n in walk(function))
     return test
 
 
@@ -3697,20 +3698,20 @@ def _zeros(node) -> bool:
 
 
 def _divisions(function) -> list:
-    return [n for n in ast.walk(function) if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide"]
+    return [n for n in walk(function) if isinstance(n, ast.Call) and _path(n.func).rsplit(".", 1)[-1] == "divide"]
 
 
 def _masked_divisions(function) -> list[tuple[ast.Subscript, ast.BinOp]]:
     """(target, division) of each division written into an array only where a mask holds, the divisor read
     under the same mask: ``depth[valid] = f * b / d[valid]`` (np.divide's ``where=`` written by hand)."""
     found = []
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Subscript) \
                 and isinstance(n.targets[0].value, ast.Name):
             mask = ast.dump(n.targets[0].slice)
-            for m in ast.walk(n.value):
+            for m in walk(n.value):
                 if isinstance(m, ast.BinOp) and isinstance(m.op, ast.Div) and any(
-                        isinstance(k, ast.Subscript) and ast.dump(k.slice) == mask for k in ast.walk(m.right)):
+                        isinstance(k, ast.Subscript) and ast.dump(k.slice) == mask for k in walk(m.right)):
                     found.append((n.targets[0], m))
     return found
 
@@ -3724,9 +3725,9 @@ def _masked_where_positive(function) -> bool:
     name it reads (``valid = np.isfinite(d) & (d > 0)``)."""
     values = _assigned_values(function)
     for target, _ in _masked_divisions(function):
-        read = [target.slice] + [v for n in ast.walk(target.slice) if isinstance(n, ast.Name)
+        read = [target.slice] + [v for n in walk(target.slice) if isinstance(n, ast.Name)
                                  for v in values.get(n.id, [])]
-        if any(_positive_test(n) for node in read for n in ast.walk(node)):
+        if any(_positive_test(n) for node in read for n in walk(node)):
             return True
     return False
 
@@ -3747,7 +3748,7 @@ def _divides_by_the_parameter(function) -> bool:
 
     def reads(node, depth=0) -> bool:
         return depth <= 4 and any(isinstance(n, ast.Name) and (n.id == parameters[0] or any(
-            reads(v, depth + 1) for v in values.get(n.id, []))) for n in ast.walk(node))
+            reads(v, depth + 1) for v in values.get(n.id, []))) for n in walk(node))
     return any(len(n.args) >= 2 and reads(n.args[1]) for n in _divisions(function)) \
         or any(reads(division.right) for _, division in _masked_divisions(function))
 
@@ -3757,18 +3758,18 @@ def _returns_the_division(function) -> bool:
     anything computed from either), or of the array a masked division fills (read strictly: the array
     itself, or a cast or copy of it -- `np.take_along_axis(depth, ...)` returns other values of it)."""
     filled = {target.value.id for target, _ in _masked_divisions(function)}
-    if filled and any(isinstance(n, ast.Return) and _the_array_itself(n.value, filled) for n in ast.walk(function)):
+    if filled and any(isinstance(n, ast.Return) and _the_array_itself(n.value, filled) for n in walk(function)):
         return True
     held = set()
     for n in _divisions(function):
         held |= {k.value.id for k in n.keywords if k.arg == "out" and isinstance(k.value, ast.Name)}
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, ast.Assign) and any(isinstance(m, ast.Call) and m in _divisions(function)
-                                             for m in ast.walk(n.value)):
+                                             for m in walk(n.value)):
             held |= {t.id for t in n.targets if isinstance(t, ast.Name)}
     return any(isinstance(n, ast.Return) and n.value is not None and any(
         (isinstance(m, ast.Name) and m.id in held) or (isinstance(m, ast.Call) and _path(m.func).endswith("divide"))
-        for m in ast.walk(n.value)) for n in ast.walk(function))
+        for m in walk(n.value)) for n in walk(function))
 
 
 def _the_array_itself(node, names) -> bool:
@@ -3870,7 +3871,7 @@ def _mid_grey(function) -> bool:
     return any(isinstance(n, ast.Compare) and any(isinstance(c, ast.Constant) and isinstance(c.value, (int, float))
                                                   and (100 <= c.value <= 160 or 0.4 <= c.value <= 0.6)
                                                   for c in [n.left, *n.comparators])
-               for n in ast.walk(function))
+               for n in walk(function))
 
 
 def _gray_encoding(node) -> bool:
@@ -3888,14 +3889,14 @@ XOR = Predicate("XORs bits", lambda function: any(
     # (np.logical_xor called, or its ufunc methods: np.logical_xor.accumulate(bits, axis=0))
     or (isinstance(n, ast.Attribute) and n.attr in ("bitwise_xor", "logical_xor"))
     or (isinstance(n, ast.Name) and n.id in ("bitwise_xor", "logical_xor"))
-    for n in ast.walk(function)))
+    for n in walk(function)))
 STRIPE_CENTRE = (expr("_ + 0.5") & (expr("2 ** _") | expr("1 << _") | calls("np.power") | calls("np.left_shift"))
                  ).saying("takes the stripe's centre")
 def _xor_accumulates(function) -> bool:
     """An XOR whose result feeds the next one (``b = b ^ g[i]``, ``b ^= g``, ``binary[i] = binary[i - 1] ^ bits[i]``,
     ``np.bitwise_xor.accumulate``): each bit XORed with the previous binary bit; read leniently (a name or array
     XORed into itself)."""
-    for n in ast.walk(function):
+    for n in walk(function):
         if isinstance(n, ast.AugAssign) and isinstance(n.op, ast.BitXor):
             return True
         if isinstance(n, ast.Attribute) and n.attr == "accumulate":
@@ -3909,13 +3910,13 @@ def _xor_accumulates(function) -> bool:
                 and any(k.arg == "out" for k in n.keywords):
             return True
     # carried through a name: `b = np.logical_xor(previous, lit[i])` then `previous = b`
-    xors = [n for n in ast.walk(function) if isinstance(n, ast.Assign) and (
+    xors = [n for n in walk(function) if isinstance(n, ast.Assign) and (
         (isinstance(n.value, ast.BinOp) and isinstance(n.value.op, ast.BitXor))
         or (isinstance(n.value, ast.Call) and _path(n.value.func).rsplit(".", 1)[-1] in ("bitwise_xor", "logical_xor")))]
     made = {_root_name(t) for n in xors for t in n.targets} - {None}
-    carried = made | {_root_name(t) for n in ast.walk(function) if isinstance(n, ast.Assign)
+    carried = made | {_root_name(t) for n in walk(function) if isinstance(n, ast.Assign)
                       and isinstance(n.value, ast.Name) and n.value.id in made for t in n.targets}
-    return any(isinstance(r, ast.Name) and r.id in carried for n in xors for r in ast.walk(n.value))
+    return any(isinstance(r, ast.Name) and r.id in carried for n in xors for r in walk(n.value))
 
 
 def _root_name(node):
@@ -3927,10 +3928,10 @@ def _root_name(node):
 def _bits_assembled_in_order(function) -> bool | None:
     """Bits assembled most significant first, or in a way this reading does not follow (counted as done): only a
     shift left by the image's own index (``bit << i`` for ``i`` of ``range(n)``) counts as not done."""
-    loops = {n.target.id for n in ast.walk(function) if isinstance(n, (ast.For, ast.comprehension))
+    loops = {n.target.id for n in walk(function) if isinstance(n, (ast.For, ast.comprehension))
              and isinstance(n.target, ast.Name) and isinstance(n.iter, ast.Call)
              and _path(n.iter.func) == "range" and len(n.iter.args) == 1}
-    shifts = [n for n in ast.walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.LShift)]
+    shifts = [n for n in walk(function) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.LShift)]
     return not all(isinstance(n.right, ast.Name) and n.right.id in loops for n in shifts) if shifts else None
 
 

@@ -52,7 +52,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Callable, Iterable
 
-from .parsing import parse
+from .parsing import parse, walk
 
 # ------------------------------------------------------------------ what is pure
 # Library calls that build a constant (cheap, silent, no files), by module; "*": all of it.
@@ -351,7 +351,7 @@ class _Analysis:
         recursion: an assignment or expression without a call is kept when its names are."""
         if not isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign, ast.Expr)):
             return "too deeply nested to read: demo code"
-        for inner in ast.walk(node):
+        for inner in walk(node):
             if isinstance(inner, (ast.Call, ast.Await, ast.Yield, ast.YieldFrom, ast.Lambda, ast.NamedExpr,
                                   ast.ListComp, ast.SetComp, ast.GeneratorExp, ast.DictComp)):
                 return "a call: demo code"
@@ -559,7 +559,7 @@ class _Analysis:
             if not statement.kept:
                 continue
             node = statement.node
-            for inner in ast.walk(node):
+            for inner in walk(node):
                 if isinstance(inner, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
                     name = getattr(inner, "name", None) or _lambda_name(node)
                     found.setdefault(name, set()).update(_body_globals(inner))
@@ -693,7 +693,7 @@ class _Pure:
         if isinstance(value, ast.Starred):
             value = value.value
         if isinstance(value, ast.Lambda):
-            return any(isinstance(n, ast.Call) and self._runs_student_code(n.func) for n in ast.walk(value.body))
+            return any(isinstance(n, ast.Call) and self._runs_student_code(n.func) for n in walk(value.body))
         chain = _chain(value)
         if chain and len(chain) == 1:
             binding = self.analysis.lookup(chain[0])
@@ -749,7 +749,7 @@ class _Reads:
                 names: set[str] = set()
                 _Reads(self.analysis, names).expression(statement)
                 self.reads |= names - bound
-                bound |= {n.id for n in ast.walk(statement) if isinstance(n, ast.Name)
+                bound |= {n.id for n in walk(statement) if isinstance(n, ast.Name)
                           and isinstance(n.ctx, ast.Store)}
             return
         arguments = node.args
@@ -803,7 +803,7 @@ def _body_globals(function) -> set[str]:
     body = function.body if isinstance(function.body, list) else [function.body]
     loads, declared_global = set(), set()
     for statement in body:
-        for inner in ast.walk(statement):
+        for inner in walk(statement):
             if isinstance(inner, ast.Name):
                 (loads.add if not isinstance(inner.ctx, ast.Store) else local.add)(inner.id)
             elif isinstance(inner, ast.Global):

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from datetime import datetime, timezone
 from pathlib import Path
 
-from .parsing import parse
+from .parsing import parse, walk
 
 # Code that can rebind a module's names at run time: a function "stub" might not stay one.
 DYNAMIC = ("globals(", "setattr(", "__dict__", "sys.modules", "exec(", "eval(", "importlib")
@@ -36,7 +36,7 @@ def stub_names(tree: ast.Module, text: str) -> frozenset[str]:
     if "NotImplementedError" not in text or any(token in text for token in DYNAMIC):
         return frozenset()
     bindings: dict[str, int] = {}
-    for node in ast.walk(tree):
+    for node in walk(tree):
         for name in _bound_names(node):
             bindings[name] = bindings.get(name, 0) + 1
     if bindings.get("NotImplementedError"):

@@ -32,7 +32,7 @@ from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
 
-from .parsing import MAX_PARSE_CHARS, TooLarge, parse
+from .parsing import MAX_PARSE_CHARS, TooLarge, parse, walk
 
 MAX_SOURCE_BYTES = MAX_PARSE_CHARS   # characters (the file's bytes are checked first, the same number)
 MAX_NODES = 400_000
@@ -125,7 +125,7 @@ def read_source(text: str, api=frozenset()) -> Reading:
     uint8 images (a helper's parameters may hold anything)."""
     try:
         tree = parse(text)   # within the bounds, under the lock
-        if sum(1 for _ in ast.walk(tree)) > MAX_NODES:
+        if sum(1 for _ in walk(tree)) > MAX_NODES:
             return _not_read(f"more than {MAX_NODES:,} syntax nodes")
         functions = {node.name: node for node in tree.body if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))}
         # (the module's own lists: `results = []` at the top level, which a function may grow at every call)
@@ -179,7 +179,7 @@ def _read_as_rows(function) -> dict[str, str]:
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "reshape" \
                 and len(node.args) == 2 and isinstance(node.args[0], ast.UnaryOp) \
                 and isinstance(node.args[1], ast.Constant) and node.args[1].value in (2, 3):
-            named = {n.id for n in ast.walk(node.func.value) if isinstance(n, ast.Name)} & parameters
+            named = {n.id for n in walk(node.func.value) if isinstance(n, ast.Name)} & parameters
         elif isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in parameters \
                 and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2 \
                 and isinstance(node.slice.elts[0], ast.Slice) and node.slice.elts[0].lower is None \
@@ -320,7 +320,7 @@ def _nodes(function) -> tuple[ast.AST, ...]:
     all their tests together."""
     nodes = getattr(function, "_walked", None)
     if nodes is None:
-        nodes = tuple(ast.walk(function))
+        nodes = tuple(walk(function))
         function._walked = nodes
     return nodes
 
@@ -342,7 +342,7 @@ def _called_names(function) -> set[str]:
 
 
 def _names_in(node) -> set[str]:
-    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+    return {n.id for n in walk(node) if isinstance(n, ast.Name)}
 
 
 _UNKNOWN = ast.Constant(value=None)   # a value the reading cannot follow (an unpacked call...)
@@ -449,7 +449,7 @@ def _whole_literal(call: ast.Call) -> bool:
     if _call_name(call) not in ("array", "asarray") or len(call.args) != 1 or call.keywords \
             or not isinstance(call.args[0], (ast.List, ast.Tuple)):
         return False
-    leaves = [n for n in ast.walk(call.args[0]) if not isinstance(n, (ast.List, ast.Tuple, ast.Load, ast.UnaryOp, ast.USub))]
+    leaves = [n for n in walk(call.args[0]) if not isinstance(n, (ast.List, ast.Tuple, ast.Load, ast.UnaryOp, ast.USub))]
     return bool(leaves) and all(isinstance(n, ast.Constant) and type(n.value) is int for n in leaves)
 
 
@@ -459,7 +459,7 @@ _FRACTIONAL_CALLS = frozenset({"sqrt", "mean", "std", "norm", "cos", "sin", "tan
 def _fractional(node, bindings, depth: int = 2) -> bool:
     """Whether an expression is fractional by its making: a true division, a root, a mean, a norm, a sine, a float
     constant (or a name whose last binding above is such an expression, followed ``depth`` bindings back)."""
-    for sub in ast.walk(node):
+    for sub in walk(node):
         if isinstance(sub, ast.BinOp) and isinstance(sub.op, ast.Div) \
                 or isinstance(sub, ast.Call) and _call_name(sub) in _FRACTIONAL_CALLS \
                 or isinstance(sub, ast.Constant) and type(sub.value) is float:
@@ -480,13 +480,13 @@ def _computed(node) -> bool:
     if isinstance(node, (ast.Name, ast.Attribute, ast.Subscript)):
         return True
     if isinstance(node, (ast.BinOp, ast.UnaryOp)):
-        return not _constant_integers(node) and not any(isinstance(sub, ast.Call) for sub in ast.walk(node))
+        return not _constant_integers(node) and not any(isinstance(sub, ast.Call) for sub in walk(node))
     return False
 
 
 def _constant_integers(node) -> bool:
     """Whether an expression is made only of integer constants (nothing is truncated then)."""
-    for sub in ast.walk(node):
+    for sub in walk(node):
         if isinstance(sub, (ast.Name, ast.Attribute, ast.Call, ast.Subscript)):
             return False
         if isinstance(sub, ast.Constant) and not isinstance(sub.value, (int, bool)):
@@ -746,7 +746,7 @@ def _query_train(name, function) -> list[Finding]:
         return []
     indices = {}   # name -> "queryIdx" / "trainIdx": names holding one kind of index only
     for target, values in _assigned_names(function).items():
-        kinds = {n.attr for v in values for n in ast.walk(v)
+        kinds = {n.attr for v in values for n in walk(v)
                  if isinstance(n, ast.Attribute) and n.attr in ("queryIdx", "trainIdx")}
         if len(kinds) == 1:
             indices[target] = kinds.pop()
@@ -846,7 +846,7 @@ def outliers_selected(node, masks) -> bool:
     """Whether ``node`` selects the entries a RANSAC mask marks 0 (its outliers): ``mask == 0``,
     ``mask.ravel() != 1``, ``mask == False``, ``~mask.astype(bool)``, ``np.logical_not(mask)``."""
     def of_a_mask(expression) -> bool:
-        return any(isinstance(n, ast.Name) and n.id in masks for n in ast.walk(expression))
+        return any(isinstance(n, ast.Name) and n.id in masks for n in walk(expression))
 
     if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.comparators[0], ast.Constant) \
             and of_a_mask(node.left):
@@ -938,7 +938,7 @@ def _view_overwritten(name, function) -> list[Finding]:
     changed = {}   # an array changed whole in place (`src -= p0`) -> the line: every view of it changes too
     for statement in statements:   # (each statement's own names read once: linear in the function)
         read = statement.value if isinstance(statement, (ast.Assign, ast.AugAssign)) else statement
-        loaded = {n.id for n in ast.walk(read) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+        loaded = {n.id for n in walk(read) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
         for view_name in sorted(loaded & views.keys()):
             if views[view_name] is None:
                 continue
@@ -971,7 +971,7 @@ def _seeded_in_a_loop(name, function) -> list[Finding]:
         if not isinstance(loop, (ast.For, ast.While)):
             continue
         turned = _names_in(loop.target) if isinstance(loop, ast.For) else set()
-        for node in (n for statement in loop.body for n in ast.walk(statement)):
+        for node in (n for statement in loop.body for n in walk(statement)):
             seeds = isinstance(node, ast.Call) and _call_name(node) in SEEDING and bool(node.args) and (
                 _call_name(node) == "default_rng" or "random" in _attribute_path(node.func))   # (not rng.random())
             if seeds and _names_in(node.args[0]) and not _names_in(node.args[0]) & turned:
@@ -1003,7 +1003,7 @@ def _data_shuffled_in_a_loop(name, function) -> list[Finding]:
     for loop in _nodes(function):
         if not isinstance(loop, (ast.For, ast.While)):
             continue
-        for node in (n for statement in loop.body for n in ast.walk(statement)):
+        for node in (n for statement in loop.body for n in walk(statement)):
             if isinstance(node, ast.Call) and _call_name(node) == "shuffle" and len(node.args) == 1 \
                     and isinstance(node.args[0], ast.Name):
                 data = node.args[0].id
@@ -1046,7 +1046,7 @@ def _mean_after_centring(name, function) -> list[Finding]:
         elif isinstance(statement, ast.AugAssign) and isinstance(statement.target, ast.Name) \
                 and isinstance(statement.op, ast.Sub):
             target, value = statement.target.id, ast.BinOp(statement.target, ast.Sub(), statement.value)
-        for node in ast.walk(statement):
+        for node in walk(statement):
             mean_of = _mean_call_of(node)
             if mean_of and mean_of in centred and _line(statement) > centred[mean_of]:
                 return [Finding(name, _line(node), "a mean taken of an array already centred",
@@ -1070,7 +1070,7 @@ def _w_never_divided(name, function) -> list[Finding]:
     # (what the divisions hold, read once: linear in the function)
     divided_names = set().union(*(_names_in(d) for d in divisions)) if divisions else set()
     divides_a_result = any(isinstance(c, ast.Call) and _call_name(c) == "triangulatePoints"
-                           for d in divisions for c in ast.walk(d))
+                           for d in divisions for c in walk(d))
 
     def finding(line, shown):
         return [Finding(name, line, "the homogeneous result of cv2.triangulatePoints is not divided by w",
@@ -1230,7 +1230,7 @@ def _kept_copies(loop) -> dict[str, str]:
     """In ``loop``'s body, the names an ``if <comparison>:`` copies into another (``best_inliers =
     inliers``, ``best_H, best_mask = H, mask``): {name: the copy's name}."""
     kept = {}
-    for node in ast.walk(loop):
+    for node in walk(loop):
         if not (isinstance(node, ast.If) and isinstance(node.test, ast.Compare)):
             continue
         for statement in node.body:
@@ -1250,7 +1250,7 @@ def _kept_copies(loop) -> dict[str, str]:
 
 def _assigns(statement, name: str) -> bool:
     return any(isinstance(n, ast.Name) and n.id == name and isinstance(n.ctx, ast.Store)
-               for n in ast.walk(statement))
+               for n in walk(statement))
 
 
 def _last_turn_used(name, function) -> list[Finding]:
@@ -1264,7 +1264,7 @@ def _last_turn_used(name, function) -> list[Finding]:
         following: dict = {}
         for statement in reversed(block):
             if isinstance(statement, (ast.For, ast.While)):
-                stored = {n.id for part in statement.body for n in ast.walk(part)
+                stored = {n.id for part in statement.body for n in walk(part)
                           if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}   # (one value every turn)
                 for original, copy in _kept_copies(statement).items():
                     read = following.get(original)
@@ -1289,7 +1289,7 @@ def _first_uses(statement) -> dict:
     `norm` before reading it -- the value from before the loop is not read there)."""
     if not isinstance(statement, _COMPOUND):
         reads, stores = {}, set()
-        for n in ast.walk(statement):
+        for n in walk(statement):
             if isinstance(n, ast.Name):
                 if isinstance(n.ctx, ast.Load):
                     reads.setdefault(n.id, n)
@@ -1303,7 +1303,7 @@ def _first_uses(statement) -> dict:
     bound = [statement.target] if isinstance(statement, (ast.For, ast.AsyncFor)) else \
         [item.optional_vars for item in getattr(statement, "items", ()) if item.optional_vars is not None]
     for part in head + bound:
-        for n in ast.walk(part):
+        for n in walk(part):
             if isinstance(n, ast.Name):
                 first.setdefault(n.id, n if isinstance(n.ctx, ast.Load) else None)
     blocks = [getattr(statement, field, []) for field in ("body", "orelse")] + \
@@ -1428,7 +1428,7 @@ def _pairs_drawn_apart(name, function) -> list[Finding]:
 def _reordering(value, array: str) -> str:
     """How ``value`` reorders the rows of ``array`` on their own: ``np.unique(array, axis=0)`` (sorted,
     repeats dropped), ``np.sort(array, axis=0)``, ``array[np.argsort(array[:, 0])]``; "" otherwise."""
-    mentions = lambda node: any(isinstance(n, ast.Name) and n.id == array for n in ast.walk(node))  # noqa: E731
+    mentions = lambda node: any(isinstance(n, ast.Name) and n.id == array for n in walk(node))  # noqa: E731
     if isinstance(value, ast.Call) and _call_name(value) in ("unique", "sort") and value.args and mentions(value.args[0]):
         axis = [k.value for k in value.keywords if k.arg == "axis"]
         if axis and isinstance(axis[0], ast.Constant) and axis[0].value == 0:
@@ -1551,7 +1551,7 @@ def _keypoints_sorted_apart(name, function) -> list[Finding]:
                 and isinstance(node.value.args[0], ast.Name) and node.value.args[0].id == target.id:
             descriptors, line = made[target.id]
             if any(_line(other) > line and any(isinstance(t, ast.Name) and t.id == descriptors
-                                               for t in ast.walk(other.targets[0])) for other in later):
+                                               for t in walk(other.targets[0])) for other in later):
                 continue   # (the descriptors are given an order too: whether it is the same, the checks say)
             return [Finding(name, _line(node), "keypoints reordered apart from their descriptors",
                             f"{name} (line {_line(node)}) reorders `{target.id}` with `{_call_name(node.value)}` but "
@@ -1697,7 +1697,7 @@ def _same_array_appended(name, function) -> list[Finding]:
                 made_before.pop(statement.targets[0].id, None)
         if not isinstance(statement, (ast.For, ast.While)) or id(statement) in within:
             continue
-        inside = [n for part in statement.body for n in ast.walk(part)]
+        inside = [n for part in statement.body for n in walk(part)]
         within.update(id(n) for n in inside)
         rebound = {t.id for n in inside if isinstance(n, (ast.Assign, ast.AugAssign, ast.For))
                    for target in (n.targets if isinstance(n, ast.Assign) else [n.target])
@@ -1825,13 +1825,13 @@ def _alias_changed(name, function) -> list[Finding]:
     in_loop: set = set()
     for loop in loops:   # (breadth first: an outer loop marks the loops inside it, which are then skipped)
         if id(loop) not in in_loop:
-            in_loop.update(id(n) for statement in loop.body for n in ast.walk(statement))
+            in_loop.update(id(n) for statement in loop.body for n in walk(statement))
     last_read: dict = {}   # name -> the last line reading it
     for n in _nodes(function):
         if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load):
             last_read[n.id] = max(last_read.get(n.id, 0), _line(n))
     # (arrays: names made by a call or a subscript -- an int's `j += 1` binds anew, it changes nothing shared)
-    counters = {n.id for loop in loops if isinstance(loop, ast.For) for n in ast.walk(loop.target)
+    counters = {n.id for loop in loops if isinstance(loop, ast.For) for n in walk(loop.target)
                 if isinstance(n, ast.Name)}
     made = _assigned_names(function)
     # (and lists: `row_x = [x, y, 1, 0, 0, 0]` is as shared by `row_y = row_x`)
@@ -1917,7 +1917,7 @@ def _kept_alias_rewritten(name, function) -> list[Finding]:
         if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load):
             read_at.setdefault(n.id, []).append(_line(n))
     for loop in (node for node in _nodes(function) if isinstance(node, (ast.For, ast.While))):
-        nodes = [n for statement in loop.body for n in ast.walk(statement)]
+        nodes = [n for statement in loop.body for n in walk(statement)]
         rebound = {n.id for n in nodes if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
         written = _first_writes(nodes)
         end = max((_line(n) for n in nodes), default=_line(loop))
@@ -1968,7 +1968,7 @@ def _chained_one_array(name, function) -> list[Finding]:
 # ------------------------------------------------------------------ a binary search of a table not sorted
 def _gray_encoded(value) -> bool:
     """``k ^ (k >> 1)`` somewhere in ``value``: Gray codes, a table of stripes' codes in stripe order."""
-    for n in ast.walk(value):
+    for n in walk(value):
         if isinstance(n, ast.BinOp) and isinstance(n.op, ast.BitXor):
             for one, other in ((n.left, n.right), (n.right, n.left)):
                 if isinstance(other, ast.BinOp) and isinstance(other.op, ast.RShift) \
@@ -2010,10 +2010,10 @@ def _late_bound_lambda(name, function) -> list[Finding]:
     reads ``f`` when it is called, after the loop has ended, so every one of them uses f's last value."""
     def free_reads(lam: ast.Lambda) -> set:
         own = {a.arg for a in lam.args.args + lam.args.kwonlyargs + lam.args.posonlyargs}
-        return {n.id for n in ast.walk(lam.body) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)} - own
+        return {n.id for n in walk(lam.body) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)} - own
 
     def targets(node) -> set:
-        return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+        return {n.id for n in walk(node) if isinstance(n, ast.Name)}
 
     for n in _nodes(function):
         places = []
@@ -2023,7 +2023,7 @@ def _late_bound_lambda(name, function) -> list[Finding]:
             places = [(n.value, set().union(*(targets(g.target) for g in n.generators)))]
         elif isinstance(n, ast.For):
             loop_names = targets(n.target)
-            places = [(arg, loop_names) for statement in n.body for call in ast.walk(statement)
+            places = [(arg, loop_names) for statement in n.body for call in walk(statement)
                       if isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute)
                       and call.func.attr in ("append", "extend", "insert")
                       for arg in call.args if isinstance(arg, ast.Lambda)]
@@ -2052,7 +2052,7 @@ def _empty_rows_skipped(name, function) -> list[Finding]:
         return []
     for loop in (node for node in _nodes(function) if isinstance(node, (ast.For, ast.While))):
         body = list(_loop_body_nodes(loop))
-        inside = {id(n) for statement in loop.body for n in ast.walk(statement)}
+        inside = {id(n) for statement in loop.body for n in walk(statement)}
         # (an array also written outside the loop -- filled with NaN before it, its skipped rows set after it --
         # is no garbage)
         outside = {_written_in_place(n) for n in _nodes(function) if id(n) not in inside}
@@ -2152,7 +2152,7 @@ def _filters_first(function) -> bool:
     parameters = function.args.posonlyargs + function.args.args
     return bool(parameters) and any(
         isinstance(n, ast.Call) and _call_name(n) in _FILTERS and n.args and isinstance(n.args[0], ast.Name)
-        and n.args[0].id == parameters[0].arg for n in ast.walk(function))
+        and n.args[0].id == parameters[0].arg for n in walk(function))
 
 
 def _infinity_filtered(name, function, filters=frozenset(_FILTERS)) -> list[Finding]:
@@ -2201,9 +2201,9 @@ def _scaled_in_place_per_turn(name, function) -> list[Finding]:
     for statement in _nodes(function):
         if not isinstance(statement, ast.For):
             continue
-        turn = {n.id for n in ast.walk(statement.target) if isinstance(n, ast.Name)}
-        assigned_inside = {t.id for s in ast.walk(statement) if isinstance(s, ast.Assign)
-                           for target in s.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+        turn = {n.id for n in walk(statement.target) if isinstance(n, ast.Name)}
+        assigned_inside = {t.id for s in walk(statement) if isinstance(s, ast.Assign)
+                           for target in s.targets for t in walk(target) if isinstance(t, ast.Name)}
         for inner in statement.body:
             if not (isinstance(inner, ast.AugAssign) and isinstance(inner.op, (ast.Mult, ast.Div))
                     and isinstance(inner.target, ast.Name)):
@@ -2232,11 +2232,11 @@ def _rolled_strip_one_sign(name, function) -> list[Finding]:
     blanks every row but the last |dy|."""
     shifts = {n.id for node in _nodes(function) if isinstance(node, ast.Call) and _call_name(node) == "roll"
               for argument in node.args[1:2] + [k.value for k in node.keywords if k.arg == "shift"]
-              for n in ast.walk(argument) if isinstance(n, ast.Name)}
+              for n in walk(argument) if isinstance(n, ast.Name)}
     signed = {n.id for node in _nodes(function)
               if isinstance(node, ast.Compare) or (isinstance(node, ast.Call) and _call_name(node) in
                                                    ("max", "min", "abs", "maximum", "minimum", "clip", "sign"))
-              for n in ast.walk(node) if isinstance(n, ast.Name)}
+              for n in walk(node) if isinstance(n, ast.Name)}
     # (a loop's `for d in range(...)` never goes below 0)
     signed |= {node.target.id for node in _nodes(function) if isinstance(node, ast.For)
                and isinstance(node.target, ast.Name) and isinstance(node.iter, ast.Call) and _call_name(node.iter) == "range"}
@@ -2361,7 +2361,7 @@ def _centroid_names(function) -> set[str]:
             value = node.value.value if isinstance(node.value, ast.Subscript) else node.value
             if _is_a_mean(value):
                 for target in node.targets:
-                    names |= {n.id for n in ast.walk(target) if isinstance(n, ast.Name)}
+                    names |= {n.id for n in walk(target) if isinstance(n, ast.Name)}
     return names
 
 
@@ -2379,7 +2379,7 @@ def _distortion_in_pixels(name, function) -> list[Finding]:
             values = made.get(part, [])
             offsets[part] = bool(values) and all(
                 isinstance(v, ast.BinOp) and isinstance(v.op, ast.Sub)
-                and not any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) for n in ast.walk(v)) for v in values)
+                and not any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div) for n in walk(v)) for v in values)
         return offsets[part]
     centroids = _centroid_names(function)
 
@@ -2420,17 +2420,17 @@ def _value_of_an_earlier_loop(name, function) -> list[Finding]:
         kept: dict[str, ast.For] = {}   # name -> the earlier loop whose per-turn value it holds after it
         for statement in block:
             if not isinstance(statement, ast.For):
-                for bound in (n.id for n in ast.walk(statement) if isinstance(n, ast.Name)
+                for bound in (n.id for n in walk(statement) if isinstance(n, ast.Name)
                               and isinstance(n.ctx, ast.Store)):
                     kept.pop(bound, None)
                 continue
-            stored = {n.id for part in statement.body for n in ast.walk(part)
+            stored = {n.id for part in statement.body for n in walk(part)
                       if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)} \
-                | {n.id for n in ast.walk(statement.target) if isinstance(n, ast.Name)}
+                | {n.id for n in walk(statement.target) if isinstance(n, ast.Name)}
             for value, earlier in kept.items():
                 if value in stored:
                     continue
-                read = next((n for part in statement.body for n in ast.walk(part)
+                read = next((n for part in statement.body for n in walk(part)
                              if isinstance(n, ast.Name) and n.id == value and isinstance(n.ctx, ast.Load)), None)
                 if read is not None:
                     return [Finding(name, _line(read), "a loop reads the value an earlier loop left",
@@ -2450,7 +2450,7 @@ def _running_halves(name, function) -> list[Finding]:
     test: a bisection halves its bracket under one): a running average of pairs, where the last value
     weighs 1/2 and the first 1/2^(n-1) -- not the mean."""
     for loop in (n for n in _nodes(function) if isinstance(n, ast.For)):
-        variables = {n.id for n in ast.walk(loop.target) if isinstance(n, ast.Name)}
+        variables = {n.id for n in walk(loop.target) if isinstance(n, ast.Name)}
         for statement in loop.body:
             if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1
                     and isinstance(statement.targets[0], ast.Name)):
@@ -2460,7 +2460,7 @@ def _running_halves(name, function) -> list[Finding]:
                 continue
             operands = [ast.unparse(side) for side in (total.left, total.right)]
             other = total.right if operands[0] == target else total.left if operands[1] == target else None
-            if other is not None and variables & {n.id for n in ast.walk(other) if isinstance(n, ast.Name)}:
+            if other is not None and variables & {n.id for n in walk(other) if isinstance(n, ast.Name)}:
                 return [Finding(name, _line(statement), "a running average of pairs where the mean belongs",
                                 f"{name} (line {_line(statement)}) sets `{ast.unparse(statement)}` at every turn of "
                                 f"the loop of line {_line(loop)}: each turn halves the weight of every earlier value "
@@ -2637,7 +2637,7 @@ def _singular_vectors_unused(name, function) -> list[Finding]:
     for n in _nodes(function):
         if id(n) in inside or not (isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult)):
             continue
-        below = list(ast.walk(n))
+        below = list(walk(n))
         inside.update(id(m) for m in below)
         if any(isinstance(m, ast.Call) and _call_name(m) == "diag" for m in below):
             rebuilt.update(m.id for m in below if isinstance(m, ast.Name))
@@ -2673,11 +2673,11 @@ def _halved_sum(node):
 def _kept_per_turn(loop: ast.For) -> set:
     """The names ``loop``'s body computes from its own variable and appends to a list (``f = f0 * d / z0`` then
     ``focal_lengths.append(f)``)."""
-    variables = {n.id for n in ast.walk(loop.target) if isinstance(n, ast.Name)}
+    variables = {n.id for n in walk(loop.target) if isinstance(n, ast.Name)}
     computed = {target.id for statement in loop.body if isinstance(statement, ast.Assign)
                 for target in statement.targets if isinstance(target, ast.Name)
-                and variables & {n.id for n in ast.walk(statement.value) if isinstance(n, ast.Name)}}
-    appended = {a.id for n in ast.walk(loop) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
+                and variables & {n.id for n in walk(statement.value) if isinstance(n, ast.Name)}}
+    appended = {a.id for n in walk(loop) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
                 and n.func.attr == "append" for a in n.args if isinstance(a, ast.Name)}
     return computed & appended
 
@@ -2709,7 +2709,7 @@ def _rotation_matrix_made_a_vector(name, function) -> list[Finding]:
     if not rotations:
         return []
     guarded = any(isinstance(node, (ast.If, ast.IfExp)) and any(
-        isinstance(n, ast.Name) and n.id in rotations for n in ast.walk(node.test)) for node in _nodes(function))
+        isinstance(n, ast.Name) and n.id in rotations for n in walk(node.test)) for node in _nodes(function))
     if guarded:
         return []
     for assign in _nodes(function):
@@ -2723,7 +2723,7 @@ def _rotation_matrix_made_a_vector(name, function) -> list[Finding]:
         if isinstance(first, ast.Name) and isinstance(node, ast.Call) \
                 and _attribute_path(node.func) in ("cv2.Rodrigues", "cv.Rodrigues") \
                 and node.args and first.id in rotations \
-                and first.id in {n.id for n in ast.walk(node.args[0]) if isinstance(n, ast.Name)}:
+                and first.id in {n.id for n in walk(node.args[0]) if isinstance(n, ast.Name)}:
             line = _line(node)
             return [Finding(name, line, "a rotation matrix turned into a rotation vector by cv2.Rodrigues",
                             f"{name} (line {line}) calls `{ast.unparse(node)}` on every {first.id}: cv2.Rodrigues "
@@ -2771,7 +2771,7 @@ def _loop_variable_assigned_in_vain(name, function) -> list[Finding]:
             continue
         elements = loop.target.elts if isinstance(loop.target, ast.Tuple) else [loop.target]
         targets = [t.id if isinstance(t, ast.Name) else None for t in elements]
-        for assign in (node for statement in loop.body for node in ast.walk(statement)):
+        for assign in (node for statement in loop.body for node in walk(statement)):
             if isinstance(assign, (ast.Yield, ast.YieldFrom, ast.Return, ast.Nonlocal, ast.Global)):
                 break   # (a value handed out or kept beyond the turn)
             if not (isinstance(assign, ast.Assign) and len(assign.targets) == 1
@@ -2840,7 +2840,7 @@ def _loop_variable_rebinds(name, function) -> list[Finding]:
     for loop in _nodes(function):
         if not isinstance(loop, ast.For):
             continue
-        for target in (t for t in ast.walk(loop.target) if isinstance(t, ast.Name)):
+        for target in (t for t in walk(loop.target) if isinstance(t, ast.Name)):
             found = places[target.id]
             first = found[0]
             if target.id not in parameters and not (first[0] < loop.lineno and not first[2]):
@@ -2865,12 +2865,12 @@ def _loop_variable_hides_a_value(name, function) -> list[Finding]:
     places = _name_places(function)
     assigned = {(target.id, statement.lineno): statement for statement in _nodes(function)
                 if isinstance(statement, ast.Assign)
-                for target in ast.walk(ast.Tuple(elts=statement.targets)) if isinstance(target, ast.Name)}
+                for target in walk(ast.Tuple(elts=statement.targets)) if isinstance(target, ast.Name)}
     for loop in _nodes(function):
         if not isinstance(loop, ast.For):
             continue
-        iterated = {n.id for n in ast.walk(loop.iter) if isinstance(n, ast.Name)}
-        for target in (t for t in ast.walk(loop.target) if isinstance(t, ast.Name) and t.id not in iterated):
+        iterated = {n.id for n in walk(loop.iter) if isinstance(n, ast.Name)}
+        for target in (t for t in walk(loop.target) if isinstance(t, ast.Name) and t.id not in iterated):
             found = places[target.id]
             at = bisect.bisect_left(found, (loop.lineno, -1, False))
             if at == 0 or found[at - 1][2]:
@@ -2947,7 +2947,7 @@ def _bindings(function) -> dict[str, list]:
         for target in targets:
             places = list(enumerate(target.elts)) if isinstance(target, (ast.Tuple, ast.List)) else [(taken, target)]
             for position, place in places:
-                for bound in ast.walk(place):
+                for bound in walk(place):
                     if isinstance(bound, ast.Name):
                         bindings.setdefault(bound.id, []).append(
                             (_line(node), value if bound is place and (taken is None or place is target) else _UNKNOWN,
@@ -3240,7 +3240,7 @@ def _null_vector_by_argmin(name, function) -> list[Finding]:
                                                  and isinstance(n.args[0], ast.Name) and n.args[0].id in values)
                                                 or (isinstance(n.func, ast.Attribute) and n.func.attr == "argmin"
                                                     and isinstance(n.func.value, ast.Name) and n.func.value.id in values))
-                   for n in ast.walk(node.slice)):
+                   for n in walk(node.slice)):
                 line = _line(node)
                 return [Finding(name, line, "the null vector picked by the argmin of the singular values",
                                 f"{name} (line {line}) takes `{ast.unparse(node)}`: np.linalg.svd gives as many singular "
@@ -3261,7 +3261,7 @@ def _rows_repeated(name, function) -> list[Finding]:
     for w in _nodes(function):
         if isinstance(w, (ast.Assign, ast.AugAssign)):
             for target in (w.targets if isinstance(w, ast.Assign) else [w.target]):
-                for t in ast.walk(target):
+                for t in walk(target):
                     if isinstance(t, ast.Subscript) and isinstance(t.value, ast.Subscript) \
                             and isinstance(t.value.value, ast.Name):
                         written.setdefault(t.value.value.id, w)
@@ -3365,10 +3365,10 @@ def _iterator_read_twice(name, function) -> list[Finding]:
         return []
     readers: dict = {}
     in_loops = {id(n) for node in _nodes(function) if isinstance(node, (ast.For, ast.comprehension))
-                for n in ast.walk(node.iter)}
+                for n in walk(node.iter)}
     for node in _nodes(function):
         if isinstance(node, (ast.For, ast.comprehension)):
-            for read in ast.walk(node.iter):
+            for read in walk(node.iter):
                 if isinstance(read, ast.Name) and read.id in made:
                     readers.setdefault(read.id, []).append(node)
         elif isinstance(node, ast.Call) and id(node) not in in_loops \
@@ -3380,7 +3380,7 @@ def _iterator_read_twice(name, function) -> list[Finding]:
     for iterator, loops in readers.items():
         # (a first loop that may stop early -- `break` -- leaves the rest to the next one on purpose)
         first = min(loops, key=lambda loop: _line(loop.iter if isinstance(loop, (ast.For, ast.comprehension)) else loop))
-        if len(loops) >= 2 and not (isinstance(first, ast.For) and any(isinstance(n, ast.Break) for n in ast.walk(first))):
+        if len(loops) >= 2 and not (isinstance(first, ast.For) and any(isinstance(n, ast.Break) for n in walk(first))):
             line = _line(made[iterator])
             return [Finding(name, line, "an iterator read twice: the second reading finds it empty",
                             f"{name} (line {line}) makes {iterator} with `{ast.unparse(made[iterator].value)}`, an "
@@ -3400,7 +3400,7 @@ def _state_kept_between_calls(name, function, lists=frozenset()) -> list[Finding
     """``results.append(x)`` (``extend``, ``insert``) on ``results``, one of the module's ``lists`` (made at its
     top level) that the function neither makes anew (a `global` list reset inside it is) nor is given: made once,
     it keeps what every earlier call put in (``np.append(f, 1.0)`` grows no list of the module's)."""
-    own = {a.arg for a in ast.walk(function.args) if isinstance(a, ast.arg)} | set(_assigned_names(function))
+    own = {a.arg for a in walk(function.args) if isinstance(a, ast.arg)} | set(_assigned_names(function))
     own |= {n.id for n in _nodes(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
     for node in _nodes(function):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in GROWS \
@@ -3456,7 +3456,7 @@ def _mutable_default_written(name, function) -> list[Finding]:
                             f"in the function", certain=True)]
         if isinstance(statement, ast.Assign):   # (rebound first: a copy of its own from here on)
             for target in statement.targets:
-                for bound in (n.id for n in ast.walk(target) if isinstance(n, ast.Name)):
+                for bound in (n.id for n in walk(target) if isinstance(n, ast.Name)):
                     mutable.pop(bound, None)
             if not mutable:
                 return []
@@ -3471,7 +3471,7 @@ def _module_array_changed(name, function, arrays) -> list[Finding]:
         return []
     # (a name the function assigns anywhere is its own, unless declared global: Python's rule)
     declared = {name for node in _nodes(function) if isinstance(node, ast.Global) for name in node.names}
-    own = {a.arg for a in ast.walk(function.args) if isinstance(a, ast.arg)} | (
+    own = {a.arg for a in walk(function.args) if isinstance(a, ast.arg)} | (
         {n.id for n in _nodes(function) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)} - declared)
     aliases: dict = {}   # a name of the function -> the module's array it was given (no copy)
     for statement in _statements_in_order(function):

@@ -32,7 +32,7 @@ from pathlib import Path
 from ..engine.registry import Exercise, discover, select
 from ..loading.definitions import CellCode, analyse
 from ..loading.notebooks import point_into_notebook
-from ..loading.parsing import parse
+from ..loading.parsing import parse, walk
 from ..loading.submission import load_submission, plain_name
 from ..loading.text import one_line
 from ..sandbox.supervisor import Limits
@@ -181,7 +181,7 @@ def _signature_findings(report: Validation, exercise: Exercise, source: str) -> 
         elif isinstance(node, (ast.Import, ast.ImportFrom)):
             bound.update({(a.asname or a.name): node for a in node.names})
         elif isinstance(node, (ast.If, ast.Try, ast.With)):
-            bound.update({n.name: n for n in ast.walk(node) if isinstance(n, ast.FunctionDef)})
+            bound.update({n.name: n for n in walk(node) if isinstance(n, ast.FunctionDef)})
     for function, declared in exercise.signatures.items():
         subject = f"{function}()"
         if function not in bound:

@@ -25,11 +25,10 @@ from __future__ import annotations
 import ast
 import builtins
 import contextlib
-import copy
 import difflib
 from collections import Counter
 
-from ...loading.parsing import parse
+from ...loading.parsing import copy_tree, parse, walk
 from .anchors import _key, _names
 from .operators import Mutant, _defs, _dotted, runs
 
@@ -60,7 +59,7 @@ def left_out():
 
 def _statements(fn: ast.FunctionDef) -> list[ast.stmt]:
     """The def's statements in line order (compound ones too, each before its body)."""
-    return sorted((node for node in ast.walk(fn) if isinstance(node, ast.stmt) and node is not fn),
+    return sorted((node for node in walk(fn) if isinstance(node, ast.stmt) and node is not fn),
                   key=lambda node: (node.lineno, node.col_offset))
 
 
@@ -179,7 +178,7 @@ def _stands_in(mine: ast.expr, theirs: ast.expr, stand_ins: frozenset, inputs: f
     values alone, no call -- the reference's own helper called in a student's name's place would stand in for
     the student's work, not for a slip."""
     return isinstance(mine, ast.Name) and mine.id in stand_ins and not isinstance(theirs, ast.Name) \
-        and not any(isinstance(node, ast.Call) for node in ast.walk(theirs)) \
+        and not any(isinstance(node, ast.Call) for node in walk(theirs)) \
         and _writable(theirs) and _names([theirs], ast.Load) <= inputs
 
 
@@ -189,7 +188,7 @@ def _fixed_for_computed(mine: ast.expr, theirs: ast.expr, inputs: frozenset) -> 
     reference sizes by the image, `4.0 * (width + height)`."""
     read = _names([theirs], ast.Load)
     return isinstance(mine, ast.Constant) and type(mine.value) in (int, float) \
-        and not any(isinstance(node, ast.Call) for node in ast.walk(theirs)) \
+        and not any(isinstance(node, ast.Call) for node in walk(theirs)) \
         and bool(read) and read <= inputs and _writable(theirs)
 
 
@@ -220,7 +219,7 @@ def _a_slip(mine: ast.expr, theirs: ast.expr) -> bool:
 def _holds(outer: ast.expr, inner: ast.expr) -> bool:
     """Whether ``inner`` is written whole inside ``outer``."""
     wanted = ast.dump(inner)
-    return any(ast.dump(node) == wanted for node in ast.walk(outer) if type(node) is type(inner))
+    return any(ast.dump(node) == wanted for node in walk(outer) if type(node) is type(inner))
 
 
 def _counterparts(statement: ast.stmt, reference: list[ast.stmt], known: set[str],
@@ -241,7 +240,7 @@ def _counterparts(statement: ast.stmt, reference: list[ast.stmt], known: set[str
 
 
 def _ordinals(fn: ast.FunctionDef) -> dict[int, int]:
-    return {id(node): ordinal for ordinal, node in enumerate(ast.walk(fn))}
+    return {id(node): ordinal for ordinal, node in enumerate(walk(fn))}
 
 
 def _rebinds(statement: ast.stmt, earlier: set[str]) -> bool:
@@ -261,7 +260,7 @@ def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outsid
     new code), "add_step" (a statement added after the one at the ordinal: (None, text, line, "after")),
     "extra_step" (a rebinding with no counterpart taken out). ``outside``: the names the student's module
     binds at its top level (and the builtins), which a counterpart's code may read too."""
-    if sum(1 for node in ast.walk(student) if isinstance(node, ast.stmt)) > MAX_STATEMENTS:
+    if sum(1 for node in walk(student) if isinstance(node, ast.stmt)) > MAX_STATEMENTS:
         return []   # (each statement is compared with the reference's: a def far longer than any lab's is not read)
     mine, theirs = _statements(student), _statements(_renamed(reference, _names_map(student, reference)))
     written = {_key(s) for s in theirs}
@@ -276,7 +275,7 @@ def aligned_changes(student: ast.FunctionDef, reference: ast.FunctionDef, outsid
             free.append(model)
     ordinals = _ordinals(student)
     changes, seen = [], set()
-    parameters = {a.arg for a in ast.walk(student.args) if isinstance(a, ast.arg)}
+    parameters = {a.arg for a in walk(student.args) if isinstance(a, ast.arg)}
     bound: set[str] = set(parameters)
     as_reference: set[str] = set(parameters)   # (names bound as the reference binds them; the others: own steps')
     alike: dict[tuple, list] = {}   # the same one-place change in several statements: one change too
@@ -365,9 +364,9 @@ def _names_map(student: ast.FunctionDef, reference: ast.FunctionDef) -> dict[str
 
 def _renamed(node, mapping: dict[str, str]):
     """A copy of ``node`` with the names ``mapping`` holds written as their images."""
-    node = copy.deepcopy(node)
+    node = copy_tree(node)
     if mapping:
-        for inner in ast.walk(node):
+        for inner in walk(node):
             if isinstance(inner, ast.Name) and inner.id in mapping:
                 inner.id = mapping[inner.id]
     return node
@@ -397,7 +396,7 @@ def _missing_steps(student, reference, mine, theirs, ordinals) -> list[tuple]:
 
 
 def _blocks(fn: ast.FunctionDef) -> list[list[ast.stmt]]:
-    return [getattr(node, field) for node in ast.walk(fn) for field in ("body", "orelse")
+    return [getattr(node, field) for node in walk(fn) for field in ("body", "orelse")
             if isinstance(getattr(node, field, None), list) and getattr(node, field)
             and isinstance(getattr(node, field)[0], ast.stmt)]
 
@@ -413,7 +412,7 @@ def aligned_mutants(student_tree: ast.Module, reference_tree: ast.Module, functi
     for where in runs(student_defs, function):
         if where not in reference_defs:
             continue
-        nodes = list(ast.walk(student_defs[where]))
+        nodes = list(walk(student_defs[where]))
         for operator, edits in aligned_changes(student_defs[where], reference_defs[where], outside):
             full = tuple((where, ordinal, operator, payload) for ordinal, payload in edits)
             line = getattr(nodes[edits[0][0]], "lineno", student_defs[where].lineno)
@@ -430,5 +429,5 @@ def _module_names(tree: ast.Module) -> set[str]:
         elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
             names.add(node.name)
         else:
-            names |= {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+            names |= {n.id for n in walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
     return names

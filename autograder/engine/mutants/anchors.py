@@ -15,6 +15,7 @@ last assignment above the statement), which is what a reader of a short lab func
 from __future__ import annotations
 
 import ast
+from ...loading.parsing import walk
 
 _HEADERS = (ast.For, ast.AsyncFor, ast.With, ast.AsyncWith)   # compound statements that assign names
 
@@ -42,7 +43,7 @@ def _header_parts(statement: ast.stmt) -> list[ast.AST]:
 
 
 def _names(parts, context) -> set[str]:
-    return {node.id for part in parts for node in ast.walk(part)
+    return {node.id for part in parts for node in walk(part)
             if isinstance(node, ast.Name) and isinstance(node.ctx, context)}
 
 
@@ -68,7 +69,7 @@ class _Function:
         arguments = fn.args
         self.parameters = {a.arg for a in [*arguments.posonlyargs, *arguments.args, *arguments.kwonlyargs,
                                            *filter(None, [arguments.vararg, arguments.kwarg])]}
-        self.statements = sorted((node for node in ast.walk(fn) if isinstance(node, ast.stmt) and node is not fn),
+        self.statements = sorted((node for node in walk(fn) if isinstance(node, ast.stmt) and node is not fn),
                                  key=lambda node: (node.lineno, node.col_offset))
         self.local = set().union(*(_assigned(s) for s in self.statements)) if self.statements else set()
         self.by_key: dict[str, list[ast.stmt]] = {}
@@ -103,14 +104,14 @@ def _bindings(tree: ast.Module) -> tuple[dict[str, str], dict[str, set], set[str
             named = [(alias.asname or alias.name.split(".")[0], f"{getattr(node, 'module', '')}:{alias.name}", None)
                      for alias in node.names]
         else:
-            named = [(n.id, "", None) for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)]
+            named = [(n.id, "", None) for n in walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)]
             unknown.update(name for name, _, _ in named)
         for name, text, value in named:
             if name in bound:
                 unknown.add(name)
             bound[name] = text
             reads[name] = set() if value is None else \
-                {n.id for n in ast.walk(value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+                {n.id for n in walk(value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
     return bound, reads, unknown
 
 

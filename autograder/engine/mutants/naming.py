@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import ast
 import atexit
-import copy
 import functools
 import itertools
 import os
@@ -36,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...loading.parsing import compile_source, parse
+from ...loading.parsing import compile_source, copy_tree, parse, walk
 from ...sandbox import evidence
 from ..inplace import MISTAKE as IN_PLACE
 from .helper import ERROR, Helper, HelperFailed
@@ -118,7 +117,7 @@ def _resolved_defaults(source: str) -> dict:
     out = {}
     for def_ in (n for n in tree.body if isinstance(n, ast.FunctionDef)):
         for name, position, _ in _none_defaults_of(def_):
-            for node in ast.walk(def_):
+            for node in walk(def_):
                 value = None
                 if isinstance(node, ast.IfExp) and tested(node.test, name):
                     value = _number(node.body, constants)
@@ -178,7 +177,7 @@ def _modes(source: str) -> dict:
 
     tree = parse(source, max_chars=None, max_statements=None)   # the reference, under the lock
     named = {}   # a name -> the strings it is compared with anywhere (a helper given the parameter)
-    for compare in (n for n in ast.walk(tree) if isinstance(n, ast.Compare) and isinstance(n.left, ast.Name)):
+    for compare in (n for n in walk(tree) if isinstance(n, ast.Compare) and isinstance(n.left, ast.Name)):
         for right in compare.comparators:
             values = [right] if isinstance(right, ast.Constant) else \
                 list(right.elts) if isinstance(right, (ast.Tuple, ast.List, ast.Set)) else []
@@ -1415,7 +1414,7 @@ def _code_can(naming: Naming, trial, called) -> bool:
     functions = code.reachable(sorted(called))
     if naming.mutant.operator == "int_division":
         return bool(_INTEGER_MAKERS.search("\n".join(ast.unparse(fn) for fn in functions)))
-    called_names = {_short(n) for fn in functions for n in ast.walk(fn) if isinstance(n, ast.Call)}
+    called_names = {_short(n) for fn in functions for n in walk(fn) if isinstance(n, ast.Call)}
     quoted = _QUOTED_CALL.findall(naming.sentence)
     # (a call the mutant's own code makes: one it takes out -- "`np.atleast_2d` is missing" -- the student's
     # code lacks by that very mistake)
@@ -1453,16 +1452,16 @@ def _written_alike(mutant, trial, functions) -> bool:
     if not made:
         return True
     sizes = _sizes(functions)   # (only carriers about the expression's size are written out: linear)
-    carriers = [node for fn in functions for node in ast.walk(fn) if isinstance(node, _CARRIERS)]
-    theirs = {node.id for fn in functions for node in ast.walk(fn) if isinstance(node, ast.Name)}
+    carriers = [node for fn in functions for node in walk(fn) if isinstance(node, _CARRIERS)]
+    theirs = {node.id for fn in functions for node in walk(fn) if isinstance(node, ast.Name)}
     for expression, call, kept, keywords, ours in made:
         shared = ours & theirs   # a name both codes use is the same name (`std_l` is not `denominator`)
         shape = _alike(expression, shared)
-        size = sum(1 for _ in ast.walk(expression))
+        size = sum(1 for _ in walk(expression))
         if not any(_alike(node if call is None else _cut(node, kept, keywords), shared) == shape
                    for node in carriers if (call is not None or size // 2 <= sizes[id(node)] <= 2 * size + 4)
                    and (call is None or isinstance(node, ast.Call) and _short(node) == call
-                        and sum(1 for a in node.args[:kept] for _ in ast.walk(a)) <= 2 * size + 4)):
+                        and sum(1 for a in node.args[:kept] for _ in walk(a)) <= 2 * size + 4)):
             return False
     return True
 
@@ -1472,7 +1471,7 @@ def _sizes(functions) -> dict:
     pass (children before parents)."""
     sizes: dict = {}
     for fn in functions:
-        order = list(ast.walk(fn))
+        order = list(walk(fn))
         for node in reversed(order):   # (breadth-first reversed: every child comes before its parent)
             sizes[id(node)] = 1 + sum(sizes.get(id(child), 0) for child in ast.iter_child_nodes(node))
     return sizes
@@ -1498,7 +1497,7 @@ def _mutated_expression(source: str, edit) -> tuple | None:
     where, ordinal = edit[0], edit[1]
     tree = parse(source, max_chars=None, max_statements=None)
     fn = next((n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == where), None)
-    nodes = list(ast.walk(fn)) if fn is not None else []
+    nodes = list(walk(fn)) if fn is not None else []
     if not 0 <= ordinal < len(nodes) or not isinstance(nodes[ordinal], ast.expr):
         return None
     parents = _parents(fn)
@@ -1524,7 +1523,7 @@ def _mutated_expression(source: str, edit) -> tuple | None:
         if not isinstance(parent, ast.expr):
             return None
         changed, carrier = parent, parents[id(carrier)][0]
-    ours = frozenset(node.id for node in ast.walk(fn) if isinstance(node, ast.Name))
+    ours = frozenset(node.id for node in walk(fn) if isinstance(node, ast.Name))
     if not (isinstance(carrier, ast.Call) and isinstance(changed, ast.Call)):
         return changed, None, 0, frozenset(), ours
     # Of a call, only what the edit touches: `cv2.line(img, p, q, ...)` with its points swapped is
@@ -1578,7 +1577,7 @@ def _alike(expression, kept=frozenset()) -> str:
             index = items[0] if len(items) == 1 else ast.Tuple(items, ast.Load())
             return ast.Subscript(value, self.visit(index), ast.Load())
 
-    return ast.dump(Renamed().visit(copy.deepcopy(expression)), annotate_fields=False)
+    return ast.dump(Renamed().visit(copy_tree(expression)), annotate_fields=False)
 
 
 def _ellipsis(node) -> bool:
@@ -1603,7 +1602,7 @@ def _mutant_calls(trial, mutant) -> set:
         changed = mutated_defs(parse(model.source), mutant.edits, model.source)
     except (ValueError, SyntaxError):
         return set()
-    return {_short(n) for n in ast.walk(changed) if isinstance(n, ast.Call)}
+    return {_short(n) for n in walk(changed) if isinstance(n, ast.Call)}
 
 
 _FLOAT_WORDS = re.compile(r"float|\bf[48]\b|\bdouble\b")
@@ -1612,13 +1611,13 @@ _FLOAT_WORDS = re.compile(r"float|\bf[48]\b|\bdouble\b")
 def _converts_result_of(function, short: str) -> bool:
     """Whether ``function`` converts to float what a call of ``short`` returns: the call itself, or a name given
     its result, inside `x.astype(float...)`, `np.float32(x)`, `np.asarray(x, float...)` or `np.array(x, ...)`."""
-    given = {t.id for node in ast.walk(function) if isinstance(node, ast.Assign) and isinstance(node.value, ast.Call)
+    given = {t.id for node in walk(function) if isinstance(node, ast.Assign) and isinstance(node.value, ast.Call)
              and _short(node.value) == short for t in node.targets if isinstance(t, ast.Name)}
 
     def made_by_it(node) -> bool:
         return (isinstance(node, ast.Call) and _short(node) == short) or (isinstance(node, ast.Name) and node.id in given)
 
-    for node in ast.walk(function):
+    for node in walk(function):
         if not isinstance(node, ast.Call):
             continue
         name, text = _short(node), ast.unparse(node)
@@ -1641,14 +1640,14 @@ def _read_outside(function, name: str, makers: set) -> bool:
     outside the statements that only rebind it (`dst = np.asarray(dst, float)` and never read again: the
     value is not used anywhere)."""
     inside = set()
-    for node in ast.walk(function):
+    for node in walk(function):
         if isinstance(node, ast.Call) and _short(node) in makers:
-            inside.update(id(n) for n in ast.walk(node))
+            inside.update(id(n) for n in walk(node))
         if isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and node.value is not None \
                 and [_target_name(t) for t in getattr(node, "targets", [getattr(node, "target", None)])] == [name]:
-            inside.update(id(n) for n in ast.walk(node.value))
+            inside.update(id(n) for n in walk(node.value))
     return any(isinstance(n, ast.Name) and n.id == name and isinstance(n.ctx, ast.Load) and id(n) not in inside
-               for n in ast.walk(function))
+               for n in walk(function))
 
 
 def _target_name(target) -> str | None:

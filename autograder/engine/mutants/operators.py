@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import ast
 import bisect
-import copy
 import functools
 import itertools
 import math
@@ -27,7 +26,7 @@ import re
 from collections import Counter, deque
 from dataclasses import dataclass
 
-from ...loading.parsing import parse
+from ...loading.parsing import copy_tree, parse, walk
 
 
 def _parse(source: str):
@@ -348,7 +347,7 @@ def _defs(tree: ast.Module) -> dict[str, ast.FunctionDef]:
 def _parents(root: ast.AST) -> dict[int, tuple[ast.AST, str, int | None]]:
     """id(child) -> (parent, field, index in the field's list or None)."""
     parents = {}
-    for parent in ast.walk(root):
+    for parent in walk(root):
         for field, value in ast.iter_fields(parent):
             if isinstance(value, list):
                 for index, item in enumerate(value):
@@ -373,13 +372,13 @@ def apply_edits(source: str, edits) -> str:
     for def_name, ordinal, operator, payload in edits:
         if def_name not in defs:
             raise ValueError(f"no def {def_name}")
-        nodes = list(ast.walk(defs[def_name]))
+        nodes = list(walk(defs[def_name]))
         if not 0 <= ordinal < len(nodes):
             raise ValueError(f"no node {ordinal} in {def_name}")
         located.append((nodes[ordinal], operator, payload))
     targets = [id(node) for node, _, _ in located]
     for node, _, _ in located:  # an edit inside another's node would be lost
-        inner = {id(n) for n in ast.walk(node)} - {id(node)}
+        inner = {id(n) for n in walk(node)} - {id(node)}
         if inner & set(targets):
             raise ValueError("overlapping edits")
     parents = _parents(tree)
@@ -407,7 +406,7 @@ def mutated_defs(tree: ast.Module, edits, source: str | None = None) -> ast.Modu
                 first = min([fn.lineno] + [d.lineno for d in fn.decorator_list])
                 changed[def_name] = _parse("".join(lines[first - 1:fn.end_lineno])).body[0]
             else:
-                changed[def_name] = copy.deepcopy(fn)
+                changed[def_name] = copy_tree(fn)
         wanted.setdefault(def_name, set()).add(ordinal)
     # (each def walked once, only as far as its last edit: the located nodes, their places and the
     # locations a new node there inherits -- a mutant is built thousands of times in a grading)
@@ -420,7 +419,7 @@ def mutated_defs(tree: ast.Module, edits, source: str | None = None) -> ast.Modu
     if len(located) > 1:
         targets = {id(place[0]) for place, _, _ in located}
         for (node, *_), _, _ in located:
-            if ({id(n) for n in ast.walk(node)} - {id(node)}) & targets:
+            if ({id(n) for n in walk(node)} - {id(node)}) & targets:
                 raise ValueError("overlapping edits")
     for (node, parent, field, index, inherited), operator, payload in located:
         if parent is None:   # (the def itself is no place of a change)
@@ -436,7 +435,7 @@ _LOCATION = ("lineno", "col_offset", "end_lineno", "end_col_offset")
 
 def _located(root: ast.AST, ordinals: set) -> dict:
     """ordinal -> (node, parent, field, index, inherited) for the nodes at ``ordinals`` in
-    ``ast.walk(root)``'s order (breadth first, fields in order): where each is held, and the
+    ``walk(root)``'s order (breadth first, fields in order): where each is held, and the
     location :func:`ast.fix_missing_locations` would give a new node put there (the nearest
     enclosing node's, attribute by attribute). The walk stops at the last ordinal asked."""
     last = max(ordinals)
@@ -523,24 +522,24 @@ def _call(dotted: str, *args) -> ast.Call:
 # How each operator changes its node (payload from the generator).
 def _make_sign(node, payload):
     if payload == "all":   # [-u, -v] -> [u, v]: one sign slip written into every item
-        return type(node)([copy.deepcopy(item.operand) for item in node.elts], node.ctx)
+        return type(node)([copy_tree(item.operand) for item in node.elts], node.ctx)
     if payload == "remove":
-        return copy.deepcopy(node.operand)
-    return ast.UnaryOp(ast.USub(), copy.deepcopy(node))
+        return copy_tree(node.operand)
+    return ast.UnaryOp(ast.USub(), copy_tree(node))
 
 
 def _make_add_sub(node, payload):
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     new.op = ast.Sub() if isinstance(node.op, ast.Add) else ast.Add()
     return new
 
 
 def _make_swap_operands(node, payload):
-    return ast.BinOp(copy.deepcopy(node.right), node.op, copy.deepcopy(node.left))
+    return ast.BinOp(copy_tree(node.right), node.op, copy_tree(node.left))
 
 
 def _make_swap_args(node, payload):
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     i, j = payload
     new.args[i], new.args[j] = new.args[j], new.args[i]
     return new
@@ -548,39 +547,39 @@ def _make_swap_args(node, payload):
 
 def _make_transpose(node, payload):
     if payload == "for_reshape":   # x.reshape(w, h) -> x.T
-        return ast.Attribute(copy.deepcopy(node.func.value), "T", ast.Load())
+        return ast.Attribute(copy_tree(node.func.value), "T", ast.Load())
     if payload == "before_reshape":   # x.reshape(-1, 2) -> x.T.reshape(-1, 2)
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         new.func.value = ast.Attribute(new.func.value, "T", ast.Load())
         return new
     if payload == "cv_points":   # cv2.f(a, b, pts1, pts2) -> cv2.f(a, b, pts1.T, pts2.T)
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         for p in _CV_POINT_SETS[_dotted(node.func).rsplit(".", 1)[-1]]:
             new.args[p] = ast.Attribute(new.args[p], "T", ast.Load())
         return new
     if payload == "remove":
-        return copy.deepcopy(node.value if isinstance(node, ast.Attribute) else node.args[0])
+        return copy_tree(node.value if isinstance(node, ast.Attribute) else node.args[0])
     if payload == "literal":
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         rows = [row.elts for row in new.args[0].elts]
         new.args[0].elts = [ast.List([row[j] for row in rows], ast.Load()) for j in range(len(rows[0]))]
         return new
-    return ast.Attribute(copy.deepcopy(node), "T", ast.Load())
+    return ast.Attribute(copy_tree(node), "T", ast.Load())
 
 
 def _make_degrees(node, payload):
     if payload == "remove":
-        return copy.deepcopy(node.args[0])
-    return _call(payload, copy.deepcopy(node))
+        return copy_tree(node.args[0])
+    return _call(payload, copy_tree(node))
 
 
 def _make_axis(node, payload):
     if payload == "swap_index":  # x[:, k] <-> x[k, :]: a row for a column
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         new.slice.elts.reverse()
         return new
     if isinstance(payload, list):   # another index: [":", -1] for x[-1]; ["0:1"] a slice for x[:, 1:2]
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         parts = [_index_part(p) for p in payload]
         new.slice = parts[0] if len(parts) == 1 else ast.Tuple(parts, ast.Load())
         return new
@@ -601,19 +600,19 @@ def _make_inverse(node, payload):
     if payload in ("swap_sides", "undone_never"):   # inv(A) @ M @ B -> A @ M @ inv(B), or -> M
         first, middle, last = _chain_of_three(node)
         if payload == "undone_never":
-            return copy.deepcopy(middle)
-        toggled = [copy.deepcopy(f.args[0]) if _is_inverse(f) else _call("np.linalg.inv", copy.deepcopy(f))
+            return copy_tree(middle)
+        toggled = [copy_tree(f.args[0]) if _is_inverse(f) else _call("np.linalg.inv", copy_tree(f))
                    for f in (first, last)]
-        return ast.BinOp(ast.BinOp(toggled[0], ast.MatMult(), copy.deepcopy(middle)), ast.MatMult(), toggled[1])
+        return ast.BinOp(ast.BinOp(toggled[0], ast.MatMult(), copy_tree(middle)), ast.MatMult(), toggled[1])
     if payload == "entrywise":  # X ** -1, 1 / X -> np.linalg.inv(X)
-        return _call("np.linalg.inv", copy.deepcopy(_reciprocal_of(node)))
+        return _call("np.linalg.inv", copy_tree(_reciprocal_of(node)))
     if payload == "wrap":       # X -> np.linalg.inv(X) (the student's code: an inversion missing)
-        return _call("np.linalg.inv", copy.deepcopy(node))
+        return _call("np.linalg.inv", copy_tree(node))
     if payload == "insert":     # X.T -> np.linalg.inv(X)
-        return _call("np.linalg.inv", copy.deepcopy(node.value))
+        return _call("np.linalg.inv", copy_tree(node.value))
     if payload == "transpose":  # np.linalg.inv(X) -> X.T
-        return ast.Attribute(copy.deepcopy(node.args[0]), "T", ast.Load())
-    return copy.deepcopy(node.args[0])   # np.linalg.inv(X) -> X
+        return ast.Attribute(copy_tree(node.args[0]), "T", ast.Load())
+    return copy_tree(node.args[0])   # np.linalg.inv(X) -> X
 
 
 def _reciprocal_of(node):
@@ -634,7 +633,7 @@ def _reciprocal_of(node):
 
 
 def _make_stack_order(node, payload):
-    new = copy.deepcopy(node)   # np.hstack([a, b, c]) -> np.hstack([b, a, c]); (0, 2): cv2.merge([c, b, a])
+    new = copy_tree(node)   # np.hstack([a, b, c]) -> np.hstack([b, a, c]); (0, 2): cv2.merge([c, b, a])
     i, j = payload if isinstance(payload, tuple) else (payload, payload + 1)
     items = new.args[0].elts
     items[i], items[j] = items[j], items[i]
@@ -643,10 +642,10 @@ def _make_stack_order(node, payload):
 
 def _make_default(node, payload):
     if payload == "is_not_none":   # if dist: -> if dist is not None: (an array's truth is ambiguous)
-        return ast.Compare(copy.deepcopy(node), [ast.IsNot()], [ast.Constant(None)])
+        return ast.Compare(copy_tree(node), [ast.IsNot()], [ast.Constant(None)])
     if payload == "is_none":       # if not dist: -> if dist is None:
-        return ast.Compare(copy.deepcopy(node.operand), [ast.Is()], [ast.Constant(None)])
-    return ast.UnaryOp(ast.Not(), copy.deepcopy(node.left))   # x is None -> not x
+        return ast.Compare(copy_tree(node.operand), [ast.Is()], [ast.Constant(None)])
+    return ast.UnaryOp(ast.Not(), copy_tree(node.left))   # x is None -> not x
 
 
 def _none_defaults(fn) -> set:
@@ -659,70 +658,70 @@ def _none_defaults(fn) -> set:
 
 
 def _make_single_point(node, payload):
-    return copy.deepcopy(node.args[0])   # np.atleast_2d(x) -> x
+    return copy_tree(node.args[0])   # np.atleast_2d(x) -> x
 
 
 def _make_minmax(node, payload):
     """The call with its opposite function (`np.argmin(d, axis=2)` -> `np.argmax(d, axis=2)`), its
     arguments kept."""
     if isinstance(node, ast.Call):
-        return ast.Call(_name(payload), copy.deepcopy(node.args), copy.deepcopy(node.keywords))
+        return ast.Call(_name(payload), copy_tree(node.args), copy_tree(node.keywords))
     return _name(payload)
 
 
 def _make_flag(node, payload):
-    return ast.Attribute(copy.deepcopy(node.value), payload, ast.Load())
+    return ast.Attribute(copy_tree(node.value), payload, ast.Load())
 
 
 def _make_bound(node, payload):
     if payload == "drop":  # x - 1 -> x
-        return copy.deepcopy(node.left)
+        return copy_tree(node.left)
     if isinstance(payload, str):  # "+1" / "-1" around an expression
-        return ast.BinOp(copy.deepcopy(node), ast.Add() if payload[0] == "+" else ast.Sub(), ast.Constant(1))
+        return ast.BinOp(copy_tree(node), ast.Add() if payload[0] == "+" else ast.Sub(), ast.Constant(1))
     return ast.Constant(payload)  # a constant bound moved
 
 
 def _make_int_division(node, payload):
     if payload == "floor":
-        return ast.BinOp(copy.deepcopy(node.left), ast.FloorDiv(), copy.deepcopy(node.right))
+        return ast.BinOp(copy_tree(node.left), ast.FloorDiv(), copy_tree(node.right))
     if payload == "astype":  # np.asarray(x).astype(int)
-        return ast.Call(ast.Attribute(_call("np.asarray", copy.deepcopy(node)), "astype", ast.Load()),
+        return ast.Call(ast.Attribute(_call("np.asarray", copy_tree(node)), "astype", ast.Load()),
                         [ast.Name("int", ast.Load())], [])
-    return _call("int", copy.deepcopy(node))
+    return _call("int", copy_tree(node))
 
 
 def _make_drop_division(node, payload):
-    return copy.deepcopy(node.left)
+    return copy_tree(node.left)
 
 
 def _make_drop_factor(node, payload):
-    return copy.deepcopy(node.right if payload == "left" else node.left)
+    return copy_tree(node.right if payload == "left" else node.left)
 
 
 def _make_drop_conversion(node, payload):
     converted = _float_conversion(node)
     if isinstance(node.func, ast.Attribute) and node.func.attr == "astype":
-        return copy.deepcopy(converted)
-    return _call("np.asarray", copy.deepcopy(converted))
+        return copy_tree(converted)
+    return _call("np.asarray", copy_tree(converted))
 
 
 def _make_in_place(node, payload):
     if payload == "augment":   # x = x / s -> x /= s
-        return ast.AugAssign(copy.deepcopy(node.targets[0]), node.value.op, copy.deepcopy(node.value.right))
+        return ast.AugAssign(copy_tree(node.targets[0]), node.value.op, copy_tree(node.value.right))
     if payload == "rebind":    # x @= s -> x = x @ s: a new array, the one kept before left as it was
-        target = copy.deepcopy(node.target)
-        return ast.Assign([target], ast.BinOp(ast.Name(target.id, ast.Load()), node.op, copy.deepcopy(node.value)))
+        target = copy_tree(node.target)
+        return ast.Assign([target], ast.BinOp(ast.Name(target.id, ast.Load()), node.op, copy_tree(node.value)))
     if payload == "array":     # np.array(x, ...) copies, np.asarray(x, ...) does not
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         new.func = _name("np.asarray")
         new.keywords = [k for k in new.keywords if k.arg != "copy"]
         return new
-    return copy.deepcopy(node.func.value if isinstance(node.func, ast.Attribute) and node.func.attr == "copy"
+    return copy_tree(node.func.value if isinstance(node.func, ast.Attribute) and node.func.attr == "copy"
                          else node.args[0])   # x.copy() / np.copy(x) -> x
 
 
 def _make_drop_centring(node, payload):
-    return copy.deepcopy(node.left)   # x - mean -> x
+    return copy_tree(node.left)   # x - mean -> x
 
 
 def _index_of_the_loop(node: ast.Subscript, parents):
@@ -738,7 +737,7 @@ def _index_of_the_loop(node: ast.Subscript, parents):
     indexed = getattr(loop, "_indexed_by_counter", None)
     if indexed is None:
         indexed = loop._indexed_by_counter = {
-            (other.value.id, position) for other in ast.walk(loop)
+            (other.value.id, position) for other in walk(loop)
             if isinstance(other, ast.Subscript) and isinstance(other.value, ast.Name)
             for position in range(len(other.slice.elts) if isinstance(other.slice, ast.Tuple) else 1)
             if _index_at(other, position) == counter}
@@ -756,7 +755,7 @@ def _index_at(node: ast.Subscript, position: int) -> str:
 
 def _make_loop_counter(node, payload):
     position, counter = payload   # pts1[0, 1] -> pts1[i, 1]
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     if isinstance(new.slice, ast.Tuple):
         new.slice.elts[position] = ast.Name(counter, ast.Load())
     else:
@@ -765,7 +764,7 @@ def _make_loop_counter(node, payload):
 
 
 def _make_shape_reversed(node, payload):
-    new = copy.deepcopy(node)   # img.shape[::-1] -> img.shape[1::-1]
+    new = copy_tree(node)   # img.shape[::-1] -> img.shape[1::-1]
     new.slice = ast.Slice(ast.Constant(1), None, ast.UnaryOp(ast.USub(), ast.Constant(1)))
     return new
 
@@ -780,7 +779,7 @@ def _unpacked_width(helper: str, module_defs: dict) -> int:
     if kept is None or kept[0] is not module_defs:
         widths: dict = {}
         for fn in (module_defs or {}).values():
-            for node in ast.walk(fn):
+            for node in walk(fn):
                 if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
                         and isinstance(node.value, ast.Call) and isinstance(node.value.func, ast.Name):
                     widths.setdefault(node.value.func.id, set()).add(len(node.targets[0].elts))
@@ -792,19 +791,19 @@ def _unpacked_width(helper: str, module_defs: dict) -> int:
 
 
 def _make_flat_column(node, payload):
-    new = copy.deepcopy(node)   # P[:, 3:] -> P[:, 3]
-    new.slice.elts[1] = copy.deepcopy(node.slice.elts[1].lower)
+    new = copy_tree(node)   # P[:, 3:] -> P[:, 3]
+    new.slice.elts[1] = copy_tree(node.slice.elts[1].lower)
     return new
 
 
 def _make_count_rows(node, payload):
-    return ast.Call(ast.Name("len", ast.Load()), [copy.deepcopy(node.value)], [])   # pts.size -> len(pts)
+    return ast.Call(ast.Name("len", ast.Load()), [copy_tree(node.value)], [])   # pts.size -> len(pts)
 
 
 def _make_unpack_pair(node, payload):
     target = node.targets[0].id   # X = _points(p) -> X, _ = _points(p)
     names = [ast.Name(target, ast.Store())] + [ast.Name("_", ast.Store()) for _ in range(payload - 1)]
-    return ast.Assign([ast.Tuple(names, ast.Store())], copy.deepcopy(node.value))
+    return ast.Assign([ast.Tuple(names, ast.Store())], copy_tree(node.value))
 
 
 def _scaled_copies(fn) -> dict:
@@ -813,14 +812,14 @@ def _scaled_copies(fn) -> dict:
     cached = getattr(fn, "_scaled_copies", None)
     if cached is None:
         counts: dict = {}
-        for node in ast.walk(fn):
+        for node in walk(fn):
             if isinstance(node, (ast.Assign, ast.AugAssign)):
                 for target in (node.targets if isinstance(node, ast.Assign) else [node.target]):
-                    for t in ast.walk(target):
+                    for t in walk(target):
                         if isinstance(t, ast.Name):
                             counts[t.id] = counts.get(t.id, 0) + 1
         cached = {}
-        for node in ast.walk(fn):
+        for node in walk(fn):
             if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
                     and counts.get(node.targets[0].id) == 1 and isinstance(node.value, ast.BinOp) \
                     and isinstance(node.value.op, (ast.Mult, ast.Div)):
@@ -839,16 +838,16 @@ def _scaled_copies(fn) -> dict:
 
 
 def _make_source_names(node, payload):
-    made = copy.deepcopy(node)   # dx = 2 * p1 * xr * yr -> dx = 2 * p1 * x * y
+    made = copy_tree(node)   # dx = 2 * p1 * xr * yr -> dx = 2 * p1 * x * y
     sources = dict(payload)
-    for name in ast.walk(made.value):
+    for name in walk(made.value):
         if isinstance(name, ast.Name) and name.id in sources and isinstance(name.ctx, ast.Load):
             name.id = sources[name.id]
     return made
 
 
 def _make_tile_repeat(node, payload):
-    new = copy.deepcopy(node)   # np.tile(fs, n) <-> np.repeat(fs, n)
+    new = copy_tree(node)   # np.tile(fs, n) <-> np.repeat(fs, n)
     name = _dotted(node.func)
     new.func = _name(name.replace("tile", "repeat") if "tile" in name else name.replace("repeat", "tile"))
     return new
@@ -861,7 +860,7 @@ _MATH_TO_NUMPY.update(pow="power", atan2="arctan2", atan="arctan", asin="arcsin"
 
 
 def _make_math_numpy(node, payload):
-    new = copy.deepcopy(node)   # math.pow(r2, 2) -> np.power(r2, 2)
+    new = copy_tree(node)   # math.pow(r2, 2) -> np.power(r2, 2)
     new.func = _name("np." + _MATH_TO_NUMPY[_dotted(node.func)[5:]])
     return new
 
@@ -877,7 +876,7 @@ def _negated_reduction(node):
 
 def _make_flip_reduction(node, payload):
     """~np.all(x, ...) -> np.any(x, ...), ~x.any() -> x.all(): the negation dropped and the reduction turned."""
-    call = copy.deepcopy(_negated_reduction(node))
+    call = copy_tree(_negated_reduction(node))
     func = call.func
     if isinstance(func, ast.Attribute):
         func.attr = "any" if func.attr == "all" else "all"
@@ -904,7 +903,7 @@ def _parameters_for_identity(node, parents) -> list[str]:
     scope = _enclosing_def(call, parents)
     if scope is None:
         return []
-    given = {n.id for n in ast.walk(call) if isinstance(n, ast.Name)}
+    given = {n.id for n in walk(call) if isinstance(n, ast.Name)}
     return [a.arg for a in (*scope.args.posonlyargs, *scope.args.args) if a.arg in given][:3]
 
 
@@ -925,7 +924,7 @@ def _filters_a_made_stack(node, parents) -> bool:
     if scope is None:
         return False
     name = node.args[0].id
-    for statement in ast.walk(scope):
+    for statement in walk(scope):
         if isinstance(statement, ast.Assign) and any(isinstance(t, ast.Name) and t.id == name for t in statement.targets) \
                 and isinstance(statement.value, ast.Call):
             made = _dotted(statement.value.func).rsplit(".", 1)[-1]
@@ -938,17 +937,17 @@ def _filters_a_made_stack(node, parents) -> bool:
 
 def _make_per_image(node, payload):
     """f(stack, *rest) -> np.stack([f(image, *rest) for image in stack])."""
-    each = copy.deepcopy(node)
+    each = copy_tree(node)
     each.args[0] = ast.Name("_image", ast.Load())
-    listed = ast.ListComp(each, [ast.comprehension(ast.Name("_image", ast.Store()), copy.deepcopy(node.args[0]), [], 0)])
+    listed = ast.ListComp(each, [ast.comprehension(ast.Name("_image", ast.Store()), copy_tree(node.args[0]), [], 0)])
     return _call("np.stack", listed)
 
 
 def _make_stack_window(node, payload):
-    new = copy.deepcopy(node)   # size=k -> size=(1, k, k): a window over each image of a stack, not across them
+    new = copy_tree(node)   # size=k -> size=(1, k, k): a window over each image of a stack, not across them
     keyword = next(k for k in new.keywords if k.arg in _WINDOW_KEYWORDS)
     kept = ast.Constant(0 if keyword.arg == "sigma" else 1)
-    sides = [copy.deepcopy(keyword.value), copy.deepcopy(keyword.value)]
+    sides = [copy_tree(keyword.value), copy_tree(keyword.value)]
     keyword.value = ast.Tuple([kept, *sides] if payload == "first" else [*sides, kept], ast.Load())
     return new
 
@@ -960,7 +959,7 @@ _WINDOW_KEYWORDS = ("size", "sigma")
 
 def _make_square_window(node, payload):
     side = next(e for e in node.elts if not (isinstance(e, ast.Constant) and e.value == 1))
-    return ast.Tuple([copy.deepcopy(side), copy.deepcopy(side)], ast.Load())   # (k, 1) -> (k, k)
+    return ast.Tuple([copy_tree(side), copy_tree(side)], ast.Load())   # (k, 1) -> (k, k)
 
 
 def _makes_text(node) -> bool:
@@ -976,7 +975,7 @@ def _makes_text(node) -> bool:
 
 
 def _make_int_base(node, payload):
-    new = copy.deepcopy(node)   # int("".join(bits)) -> int("".join(bits), 2)
+    new = copy_tree(node)   # int("".join(bits)) -> int("".join(bits), 2)
     new.args = [*new.args, ast.Constant(payload)]
     return new
 
@@ -984,17 +983,17 @@ def _make_int_base(node, payload):
 def _make_reshape_order(node, payload):
     if payload == "transpose":   # x.reshape(3, -1) -> x.reshape(-1, 3).T (the student's code: the transposed shape
         #                            for a transpose; still 2-D for a single point)
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         new.args = [ast.Tuple(list(reversed(new.args[0].elts)), ast.Load())] if len(new.args) == 1 \
             else list(reversed(new.args))
         return ast.Attribute(new, "T", ast.Load())
     if payload == "swap_first":   # x.reshape(n, 4, 4) -> x.reshape(4, n, 4).transpose(1, 0, 2)
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         sizes = list(new.args[0].elts) if len(new.args) == 1 else list(new.args)
         sizes[0], sizes[1] = sizes[1], sizes[0]
         new.args = [ast.Tuple(sizes, ast.Load())] if len(node.args) == 1 else sizes
         return ast.Call(ast.Attribute(new, "transpose", ast.Load()), [ast.Constant(1), ast.Constant(0), ast.Constant(2)], [])
-    new = copy.deepcopy(node)   # x.reshape(3, 4) -> x.reshape(3, 4, order="F")
+    new = copy_tree(node)   # x.reshape(3, 4) -> x.reshape(3, 4, order="F")
     new.keywords = [k for k in new.keywords if k.arg != "order"] + [ast.keyword("order", ast.Constant(payload))]
     return new
 
@@ -1013,8 +1012,8 @@ _ARITHMETIC = {"mul_div": ast.Div, "div_mul": ast.Mult, "matmul_mult": ast.Mult,
 
 def _make_other_name_line(node, payload):
     old, new = payload
-    made = copy.deepcopy(node)
-    for name in ast.walk(made.value):
+    made = copy_tree(node)
+    for name in walk(made.value):
         if isinstance(name, ast.Name) and name.id == old and isinstance(name.ctx, ast.Load):
             name.id = new
     return made
@@ -1022,13 +1021,13 @@ def _make_other_name_line(node, payload):
 
 def _make_arithmetic(node, payload):
     if payload in _CHAINED:   # every product of the chain `a * b * c` made the other kind (its left spine)
-        made = copy.deepcopy(node)
+        made = copy_tree(node)
         link, was = made, _CHAINED[payload][0]
         while isinstance(link, ast.BinOp) and isinstance(link.op, was):
             link.op = _CHAINED[payload][1]()
             link = link.left
         return made
-    return ast.BinOp(copy.deepcopy(node.left), _ARITHMETIC[payload](), copy.deepcopy(node.right))
+    return ast.BinOp(copy_tree(node.left), _ARITHMETIC[payload](), copy_tree(node.right))
 
 
 # a chain of products written element by element where matrix products belong (`K2.T * F * K1`), and back
@@ -1036,50 +1035,50 @@ _CHAINED = {"chain_matmul": (ast.Mult, ast.MatMult), "chain_mult": (ast.MatMult,
 
 
 def _make_stack_kind(node, payload):
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     new.func = _name(f"np.{payload}")
     return new
 
 
 def _make_drop_mask(node, payload):
-    return copy.deepcopy(node.left)
+    return copy_tree(node.left)
 
 
 def _make_reshape_transpose(node, payload):
-    inner = copy.deepcopy(node.value)
-    shape = ast.Subscript(ast.Attribute(copy.deepcopy(node.value), "shape", ast.Load()),
+    inner = copy_tree(node.value)
+    shape = ast.Subscript(ast.Attribute(copy_tree(node.value), "shape", ast.Load()),
                           ast.Slice(None, None, ast.UnaryOp(ast.USub(), ast.Constant(1))), ast.Load())
     return ast.Call(ast.Attribute(inner, "reshape", ast.Load()), [shape], [])
 
 
 def _make_shift(node, payload):
-    return ast.BinOp(copy.deepcopy(node.left), ast.LShift() if isinstance(node.op, ast.RShift) else ast.RShift(),
-                     copy.deepcopy(node.right))
+    return ast.BinOp(copy_tree(node.left), ast.LShift() if isinstance(node.op, ast.RShift) else ast.RShift(),
+                     copy_tree(node.right))
 
 
 def _make_loop_index(node, payload):
-    return _call("range", _call("len", copy.deepcopy(node)))   # the positions of what was looped over
+    return _call("range", _call("len", copy_tree(node)))   # the positions of what was looped over
 
 
 def _make_dehomogenise(node, payload):
     if isinstance(payload, tuple):   # x[:, :2] / d -> x[:, :2] / x[:, 2:3]: the divisor made the last coordinate
         return _make_dehomogenise(node.left, payload[1])
     # x[:, :2] -> x[:, :2] / x[:, 2:3]: the points divided by their last coordinate
-    last = copy.deepcopy(node)
+    last = copy_tree(node)
     bound = ast.Slice(ast.Constant(payload), ast.Constant(payload + 1))
     if isinstance(last.slice, ast.Tuple):
         last.slice.elts[-1] = bound
     else:
         last.slice = bound
-    return ast.BinOp(copy.deepcopy(node), ast.Div(), last)
+    return ast.BinOp(copy_tree(node), ast.Div(), last)
 
 
 def _make_translation(node, payload):
     # pts @ M[:, :3].T -> pts @ M[:, :3].T + M[:, 3]: the last column (the homogeneous 1's) added back
     block, column = _sliced_block(node.right if payload[0] == "right" else node.left)
     bound = column if payload[1] == "row" else ast.Slice(column, ast.Constant(column.value + 1))
-    last = ast.Subscript(copy.deepcopy(block.value), ast.Tuple([ast.Slice(), bound], ast.Load()), ast.Load())
-    return ast.BinOp(copy.deepcopy(node), ast.Add(), last)
+    last = ast.Subscript(copy_tree(block.value), ast.Tuple([ast.Slice(), bound], ast.Load()), ast.Load())
+    return ast.BinOp(copy_tree(node), ast.Add(), last)
 
 
 def _sliced_block(node):
@@ -1107,38 +1106,38 @@ _GATHERS = frozenset({"take_along_axis", "take", "choose"})   # NumPy calls that
 def _summed_up(fn) -> set[str]:
     """The names ``fn`` adds to in place (`weights += weight`): sums built up item by item (read once per def)."""
     if not hasattr(fn, "_summed_up"):
-        fn._summed_up = {node.target.id for node in ast.walk(fn) if isinstance(node, ast.AugAssign)
+        fn._summed_up = {node.target.id for node in walk(fn) if isinstance(node, ast.AugAssign)
                          and isinstance(node.op, ast.Add) and isinstance(node.target, ast.Name)}
     return fn._summed_up
 
 
 def _make_scale_inverse(node, payload):
     """A scaling done in place the other way: `x /= k` -> `x *= k`, `x *= k` -> `x /= k`."""
-    return ast.AugAssign(copy.deepcopy(node.target), ast.Mult() if isinstance(node.op, ast.Div) else ast.Div(),
-                         copy.deepcopy(node.value))
+    return ast.AugAssign(copy_tree(node.target), ast.Mult() if isinstance(node.op, ast.Div) else ast.Div(),
+                         copy_tree(node.value))
 
 
 def _make_own_values(node, payload):
     """One value of a whole array made each item's own, given to an operand with one more axis:
     `total / weights.max()` -> `total / weights[..., None]`."""
     whole = node.func.value if isinstance(node.func, ast.Attribute) and not node.args else node.args[0]
-    return ast.Subscript(copy.deepcopy(whole), ast.Tuple([ast.Constant(...), ast.Constant(None)], ast.Load()),
+    return ast.Subscript(copy_tree(whole), ast.Tuple([ast.Constant(...), ast.Constant(None)], ast.Load()),
                          ast.Load())
 
 
 def _make_unwrap(node, payload):
     if payload == "method":   # depth.mean() -> depth
-        return copy.deepcopy(node.func.value)
+        return copy_tree(node.func.value)
     if payload == "ratio":   # np.arctan2(y, x) -> y / x
-        return ast.BinOp(copy.deepcopy(node.args[0]), ast.Div(), copy.deepcopy(node.args[1]))
+        return ast.BinOp(copy_tree(node.args[0]), ast.Div(), copy_tree(node.args[1]))
     if payload == "third":   # cv2.addWeighted(a, 0.6, b, 0.4, 0) -> b
-        return copy.deepcopy(node.args[2])
+        return copy_tree(node.args[2])
     if payload == "clamped":   # np.maximum(d, 1.0) -> d
-        return copy.deepcopy(next(a for a in node.args if not isinstance(_bare(a), ast.Constant)))
+        return copy_tree(next(a for a in node.args if not isinstance(_bare(a), ast.Constant)))
     inner = node.args[0]
     while payload == "chain" and _unary_call(inner):   # np.tan(np.deg2rad(s)) -> s: both calls at once
         inner = inner.args[0]
-    return copy.deepcopy(inner)
+    return copy_tree(inner)
 
 
 _INTEGER_NAMES = {"int", "int8", "int16", "int32", "int64", "intp", "int_", "int0", "uint16", "uint32", "uint64"}
@@ -1171,8 +1170,8 @@ def _make_float_kept(node, payload):
     """An array made of integers, kept as floats: `np.int32(x)` -> `x`, `np.asarray(x, np.int32)` ->
     `np.asarray(x, np.float64)`."""
     if payload == "call":
-        return copy.deepcopy(node.args[0])
-    new = copy.deepcopy(node)
+        return copy_tree(node.args[0])
+    new = copy_tree(node)
     if len(new.args) >= 2 and _integer_type(new.args[1]):
         new.args[1] = _name("np.float64")
     else:
@@ -1199,7 +1198,7 @@ def _rounded_to_decimals(node, dotted: str) -> bool:
 
 
 def _make_swap_items(node, payload):
-    new = copy.deepcopy(node)   # (h, w) -> (w, h): the same for a tuple assigned to, `w, h = image.shape[:2]`
+    new = copy_tree(node)   # (h, w) -> (w, h): the same for a tuple assigned to, `w, h = image.shape[:2]`
     if payload[0] == "moved":   # (a, b, c) -> (b, c, a): the items in the order given
         new.elts = [new.elts[k] for k in payload[1]]
         return new
@@ -1209,14 +1208,14 @@ def _make_swap_items(node, payload):
 
 
 def _make_cross_items(node, payload):
-    new = copy.deepcopy(node)   # ((x0, y0), (x1, y1)) -> ((x0, y1), (x1, y0)): the k-th items of two points exchanged
+    new = copy_tree(node)   # ((x0, y0), (x1, y1)) -> ((x0, y1), (x1, y0)): the k-th items of two points exchanged
     i, j, k = payload
     new.elts[i].elts[k], new.elts[j].elts[k] = new.elts[j].elts[k], new.elts[i].elts[k]
     return new
 
 
 def _make_compare(node, payload):
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     operator, threshold = payload if isinstance(payload, tuple) else (payload, None)
     new.ops = [getattr(ast, operator)()]
     if threshold is not None:   # `d >= 1` -> `d > 0`: the test and its threshold
@@ -1226,18 +1225,18 @@ def _make_compare(node, payload):
 
 def _make_row_kron(node, payload):
     first, second = node.args   # np.kron(a, b) -> (a[:, :, None] * b[:, None, :]).reshape(len(a), -1): row i's kron only
-    outer = ast.BinOp(ast.Subscript(copy.deepcopy(first), parse("x[:, :, None]", mode="eval").body.slice, ast.Load()),
+    outer = ast.BinOp(ast.Subscript(copy_tree(first), parse("x[:, :, None]", mode="eval").body.slice, ast.Load()),
                       ast.Mult(),
-                      ast.Subscript(copy.deepcopy(second), parse("x[:, None, :]", mode="eval").body.slice, ast.Load()))
+                      ast.Subscript(copy_tree(second), parse("x[:, None, :]", mode="eval").body.slice, ast.Load()))
     return ast.Call(ast.Attribute(outer, "reshape", ast.Load()),
-                    [ast.Call(ast.Name("len", ast.Load()), [copy.deepcopy(first)], []), ast.Constant(-1)], [])
+                    [ast.Call(ast.Name("len", ast.Load()), [copy_tree(first)], []), ast.Constant(-1)], [])
 
 
 _FLIPS = {"fliplr": "flipud", "flipud": "fliplr"}
 
 
 def _make_flip_axis(node, payload):
-    new = copy.deepcopy(node)   # np.fliplr(x) -> np.flipud(x); cv2.flip(x, 0) -> cv2.flip(x, 1): the other axis reversed
+    new = copy_tree(node)   # np.fliplr(x) -> np.flipud(x); cv2.flip(x, 0) -> cv2.flip(x, 1): the other axis reversed
     if payload == "code":
         new.args[1] = ast.Constant(1 - new.args[1].value)
     else:
@@ -1258,7 +1257,7 @@ def _flips(node):
 
 def _make_clip_range(node, payload):
     low, high = payload   # cv2.normalize(x, None, 0, 255, cv2.NORM_MINMAX) -> np.clip(x, 0, 255): kept in range, not stretched
-    return ast.Call(_name("np.clip"), [copy.deepcopy(node.args[0]), copy.deepcopy(low), copy.deepcopy(high)], [])
+    return ast.Call(_name("np.clip"), [copy_tree(node.args[0]), copy_tree(low), copy_tree(high)], [])
 
 
 def _stretched_range(node):
@@ -1275,7 +1274,7 @@ def _stretched_range(node):
 
 
 def _make_cross_multiply(node, payload):
-    new = copy.deepcopy(node)   # a / b < r -> a < r * b: no division, and a b of 0 compares instead of raising
+    new = copy_tree(node)   # a / b < r -> a < r * b: no division, and a b of 0 compares instead of raising
     ratio = new.left
     new.left, new.comparators = ratio.left, [ast.BinOp(new.comparators[0], ast.Mult(), ratio.right)]
     return new
@@ -1284,34 +1283,34 @@ def _make_cross_multiply(node, payload):
 def _make_regroup(node, payload):
     if payload == "first":   # a - b / c -> (a - b) / c
         inner = node.right
-        return ast.BinOp(ast.BinOp(copy.deepcopy(node.left), node.op, copy.deepcopy(inner.left)), inner.op,
-                         copy.deepcopy(inner.right))
+        return ast.BinOp(ast.BinOp(copy_tree(node.left), node.op, copy_tree(inner.left)), inner.op,
+                         copy_tree(inner.right))
     if payload == "last":    # a * b + c -> a * (b + c)
         inner = node.left
-        return ast.BinOp(copy.deepcopy(inner.left), inner.op,
-                         ast.BinOp(copy.deepcopy(inner.right), node.op, copy.deepcopy(node.right)))
+        return ast.BinOp(copy_tree(inner.left), inner.op,
+                         ast.BinOp(copy_tree(inner.right), node.op, copy_tree(node.right)))
     if payload == "floor_last":   # (a // c) * b -> a * b // c
         inner = node.left
-        return ast.BinOp(ast.BinOp(copy.deepcopy(inner.left), node.op, copy.deepcopy(node.right)), inner.op,
-                         copy.deepcopy(inner.right))
+        return ast.BinOp(ast.BinOp(copy_tree(inner.left), node.op, copy_tree(node.right)), inner.op,
+                         copy_tree(inner.right))
     if payload in ("factor_last", "factor_first"):   # (a - b) * c -> a - b * c, or a * c - b
         inner = node.left
         if payload == "factor_last":
-            return ast.BinOp(copy.deepcopy(inner.left), inner.op,
-                             ast.BinOp(copy.deepcopy(inner.right), node.op, copy.deepcopy(node.right)))
-        return ast.BinOp(ast.BinOp(copy.deepcopy(inner.left), node.op, copy.deepcopy(node.right)), inner.op,
-                         copy.deepcopy(inner.right))
+            return ast.BinOp(copy_tree(inner.left), inner.op,
+                             ast.BinOp(copy_tree(inner.right), node.op, copy_tree(node.right)))
+        return ast.BinOp(ast.BinOp(copy_tree(inner.left), node.op, copy_tree(node.right)), inner.op,
+                         copy_tree(inner.right))
     if payload == "flat":   # a - (b + c) -> a - b + c
         inner = node.right
-        return ast.BinOp(ast.BinOp(copy.deepcopy(node.left), node.op, copy.deepcopy(inner.left)), inner.op,
-                         copy.deepcopy(inner.right))
+        return ast.BinOp(ast.BinOp(copy_tree(node.left), node.op, copy_tree(inner.left)), inner.op,
+                         copy_tree(inner.right))
     inner = node.left       # a / b * c -> a / (b * c)
-    return ast.BinOp(copy.deepcopy(inner.left), inner.op,
-                     ast.BinOp(copy.deepcopy(inner.right), node.op, copy.deepcopy(node.right)))
+    return ast.BinOp(copy_tree(inner.left), inner.op,
+                     ast.BinOp(copy_tree(inner.right), node.op, copy_tree(node.right)))
 
 
 def _make_dtype(node, payload):
-    new = copy.deepcopy(node)   # np.zeros(shape) -> np.zeros(shape, dtype=np.uint8); dtype=int -> np.float64
+    new = copy_tree(node)   # np.zeros(shape) -> np.zeros(shape, dtype=np.uint8); dtype=int -> np.float64
     new.keywords = [k for k in new.keywords if k.arg != "dtype"] + [ast.keyword("dtype", _name(payload))]
     return new
 
@@ -1321,18 +1320,18 @@ def _make_sibling_step(node, payload):
     twin = _renamed(node, name, payload)
     return ast.fix_missing_locations(ast.copy_location(ast.Assign(
         [ast.Tuple([ast.Name(name, ast.Store()), ast.Name(payload, ast.Store())], ast.Store())],
-        ast.Tuple([copy.deepcopy(node.value), twin.value], ast.Load())), node))
+        ast.Tuple([copy_tree(node.value), twin.value], ast.Load())), node))
 
 
 def _make_sibling_argument(node, payload):
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     position, text = payload
     new.args[position] = _parse(text).body[0].value   # (the other call's argument, as it was written)
     return new
 
 
 def _make_twin_step(node, payload):
-    new = copy.deepcopy(node)   # (x / w, y) -> (x / w, y / w); `v = y` -> `v = y / w`
+    new = copy_tree(node)   # (x / w, y) -> (x / w, y / w); `v = y` -> `v = y / w`
     position, text = payload
     step = _parse(text).body[0].value   # (the twin's step, as the student wrote it)
     if position is None:
@@ -1343,7 +1342,7 @@ def _make_twin_step(node, payload):
 
 
 def _make_twin_argument(node, payload):
-    new = copy.deepcopy(node)   # f(A1 @ T1.T, A2) -> f(A1 @ T1.T, A2 @ T2.T)
+    new = copy_tree(node)   # f(A1 @ T1.T, A2) -> f(A1 @ T1.T, A2 @ T2.T)
     position, text = payload
     new.args[position] = _parse(text).body[0].value
     return new
@@ -1351,28 +1350,28 @@ def _make_twin_argument(node, payload):
 
 def _make_measure(node, payload):
     if payload == "sqrt":   # np.sum(d ** 2, axis=1) -> np.sqrt(np.sum(d ** 2, axis=1))
-        return ast.Call(_name("np.sqrt"), [copy.deepcopy(node)], [])
+        return ast.Call(_name("np.sqrt"), [copy_tree(node)], [])
     if payload == "abs_inside":   # np.sum(l - r) -> np.sum(np.abs(l - r))
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         new.args[0] = ast.Call(_name("np.abs"), [new.args[0]], [])
         return new
     if payload == "square":   # np.abs(d) -> d ** 2
-        return ast.BinOp(copy.deepcopy(node.args[0]), ast.Pow(), ast.Constant(2))
+        return ast.BinOp(copy_tree(node.args[0]), ast.Pow(), ast.Constant(2))
     inner = node.left if isinstance(node, ast.BinOp) else node.args[0]   # d ** 2, np.square(d) -> np.abs(d)
-    return ast.Call(_name("np.abs"), [copy.deepcopy(inner)], [])
+    return ast.Call(_name("np.abs"), [copy_tree(inner)], [])
 
 
 def _make_power_inside(node, payload):
     if payload == "ratio":   # np.mean(f / z) -> f / np.mean(z): the ratio of the mean, not the mean of ratios
-        call = copy.deepcopy(node)
+        call = copy_tree(node)
         ratio = call.args[0]
         call.args[0] = ratio.right
         return ast.BinOp(ratio.left, ast.Div(), call)
     if payload == "inside":   # np.mean(d) ** 2 -> np.mean(d ** 2)
-        call = copy.deepcopy(node.left)
-        call.args[0] = ast.BinOp(call.args[0], ast.Pow(), copy.deepcopy(node.right))
+        call = copy_tree(node.left)
+        call.args[0] = ast.BinOp(call.args[0], ast.Pow(), copy_tree(node.right))
         return call
-    new = copy.deepcopy(node)   # np.mean(d ** 2) -> np.mean(d) ** 2
+    new = copy_tree(node)   # np.mean(d ** 2) -> np.mean(d) ** 2
     power = new.args[0]
     new.args[0] = power.left
     return ast.BinOp(new, ast.Pow(), power.right)
@@ -1380,29 +1379,29 @@ def _make_power_inside(node, payload):
 
 def _make_slice(node, payload):
     if payload == "other_end":   # costs[:, d:] -> costs[:, :d]: the part before the bound, not after it
-        return ast.Slice(copy.deepcopy(node.upper), copy.deepcopy(node.lower), None)
+        return ast.Slice(copy_tree(node.upper), copy_tree(node.lower), None)
     if payload == "drop_last":   # x[:, d:] -> x[:, :-d or None]: the last d entries off, not the first (none for 0)
-        return ast.Slice(None, ast.BoolOp(ast.Or(), [ast.UnaryOp(ast.USub(), copy.deepcopy(node.lower)),
+        return ast.Slice(None, ast.BoolOp(ast.Or(), [ast.UnaryOp(ast.USub(), copy_tree(node.lower)),
                                                      ast.Constant(None)]), None)
     lower, upper = payload   # l[:, 1:] -> l[:, :2]; A[r, 3:7] -> A[r, 4:8]
     return ast.Slice(None if lower is None else _signed(lower), None if upper is None else _signed(upper), None)
 
 
 def _make_row_column(node, payload):
-    made = copy.deepcopy(node)
+    made = copy_tree(node)
     if payload == "column":   # X[k] -> X[:, k]
-        made.slice = ast.Tuple([ast.Slice(None, None, None), copy.deepcopy(node.slice)], ast.Load())
+        made.slice = ast.Tuple([ast.Slice(None, None, None), copy_tree(node.slice)], ast.Load())
     else:                     # X[:, k] -> X[k]
-        made.slice = copy.deepcopy(node.slice.elts[1])
+        made.slice = copy_tree(node.slice.elts[1])
     return made
 
 
 def _make_slice_item(node, payload):
     position, start = payload
-    made = copy.deepcopy(node)
+    made = copy_tree(node)
     if position is None:   # the block's diagonal: `K[:2, :2]` -> `K[[0, 1], [0, 1]]`
         diagonal = ast.List([ast.Constant(k) for k in range(*start)], ast.Load())
-        made.slice = ast.Tuple([diagonal, copy.deepcopy(diagonal)], ast.Load())
+        made.slice = ast.Tuple([diagonal, copy_tree(diagonal)], ast.Load())
     elif isinstance(made.slice, ast.Tuple):
         made.slice.elts[position] = ast.Constant(start)
     else:
@@ -1419,7 +1418,7 @@ def _make_canvas(node, payload):
 
 
 def _make_chain_order(node, payload):
-    first, middle, last = (copy.deepcopy(f) for f in _chain_of_three(node))
+    first, middle, last = (copy_tree(f) for f in _chain_of_three(node))
     factors = {"first": [middle, first, last], "last": [first, last, middle],
                "outer": [last, middle, first]}[payload]   # (a conjugation turned round: T(-c) R T(c) for T(c) R T(-c))
     return ast.BinOp(ast.BinOp(factors[0], ast.MatMult(), factors[1]), ast.MatMult(), factors[2])
@@ -1430,21 +1429,21 @@ def _make_loop_all(node, payload):
 
 
 def _make_drop_slice(node, payload):
-    return copy.deepcopy(node.value)   # pts[:8] -> pts
+    return copy_tree(node.value)   # pts[:8] -> pts
 
 
 def _make_power_spread(node, payload):
     terms = node.left   # (x + y) ** 2 -> x ** 2 + y ** 2
-    return ast.BinOp(ast.BinOp(copy.deepcopy(terms.left), ast.Pow(), copy.deepcopy(node.right)), terms.op,
-                     ast.BinOp(copy.deepcopy(terms.right), ast.Pow(), copy.deepcopy(node.right)))
+    return ast.BinOp(ast.BinOp(copy_tree(terms.left), ast.Pow(), copy_tree(node.right)), terms.op,
+                     ast.BinOp(copy_tree(terms.right), ast.Pow(), copy_tree(node.right)))
 
 
 def _make_keep_result(node, payload):
-    return ast.Assign([ast.Name(payload, ast.Store())], copy.deepcopy(node.value))   # f(x) -> x = f(x)
+    return ast.Assign([ast.Name(payload, ast.Store())], copy_tree(node.value))   # f(x) -> x = f(x)
 
 
 def _make_add_axis(node, payload):
-    new = copy.deepcopy(node)   # np.delete(X, 2) -> np.delete(X, 2, axis=1)
+    new = copy_tree(node)   # np.delete(X, 2) -> np.delete(X, 2, axis=1)
     axis, kept = payload if isinstance(payload, tuple) else (payload, False)
     new.keywords = [*new.keywords, ast.keyword("axis", _signed(axis))]
     if kept:   # np.linalg.norm(l[:, :2]) -> (..., axis=1, keepdims=True): each row's, divided row by row
@@ -1453,7 +1452,7 @@ def _make_add_axis(node, payload):
 
 
 def _make_flip_keyword(node, payload):
-    new = copy.deepcopy(node)   # np.linalg.svd(A, full_matrices=False) -> full_matrices=True
+    new = copy_tree(node)   # np.linalg.svd(A, full_matrices=False) -> full_matrices=True
     if isinstance(payload, tuple):   # (a keyword left at its default given: np.linspace(0, n, w) -> endpoint=False)
         new.keywords = [*new.keywords, ast.keyword(payload[0], ast.Constant(payload[1]))]
         return new
@@ -1465,19 +1464,19 @@ def _make_flip_keyword(node, payload):
 def _make_simultaneous(node, payload):
     _, target, value = payload   # x = f(x, y) (then y = g(x, y)) -> x, y = f(x, y), g(x, y)
     return ast.copy_location(ast.Assign(
-        [ast.Tuple([copy.deepcopy(node.targets[0]), parse(target, mode="eval").body], ast.Store())],
-        ast.Tuple([copy.deepcopy(node.value), parse(value, mode="eval").body], ast.Load())), node)
+        [ast.Tuple([copy_tree(node.targets[0]), parse(target, mode="eval").body], ast.Store())],
+        ast.Tuple([copy_tree(node.value), parse(value, mode="eval").body], ast.Load())), node)
 
 
 def _make_move(node, payload):
     _, moved, _, side = payload   # a statement made again beside the edited one (an `if True:` holds both)
     made = parse(moved).body[0]
-    pair = [copy.deepcopy(node), made] if side == "after" else [made, copy.deepcopy(node)]
+    pair = [copy_tree(node), made] if side == "after" else [made, copy_tree(node)]
     return ast.copy_location(ast.If(ast.Constant(True), pair, []), node)
 
 
 def _make_indent(node, payload):
-    new = copy.deepcopy(node)   # for ...: body; s -> for ...: body; s
+    new = copy_tree(node)   # for ...: body; s -> for ...: body; s
     moved = parse(payload[1]).body[0]
     new.body = [moved, *new.body] if payload[3] == "first" else [*new.body, moved]   # (s; for ...: -> for ...: s)
     return new
@@ -1505,12 +1504,12 @@ def _assignments(words) -> tuple:
 
 def _assignments_of(fn) -> tuple:
     found = []
-    for statement in ast.walk(fn):
+    for statement in walk(fn):
         if isinstance(statement, ast.Assign):
-            names = tuple(n.id for t in statement.targets for n in ast.walk(t) if isinstance(n, ast.Name))
+            names = tuple(n.id for t in statement.targets for n in walk(t) if isinstance(n, ast.Name))
             single = statement.targets[0].id if len(statement.targets) == 1 \
                 and isinstance(statement.targets[0], ast.Name) else None
-            calls = frozenset(_dotted(c.func) for c in ast.walk(statement.value) if isinstance(c, ast.Call))
+            calls = frozenset(_dotted(c.func) for c in walk(statement.value) if isinstance(c, ast.Call))
             found.append(_Assigned(statement.lineno, names, single, frozenset(_read(statement.value)), calls,
                                    statement.value))
     return tuple(found)
@@ -1548,18 +1547,18 @@ def _centre_and_translation(node, parent, words):
 def _make_centre_translation(node, payload):
     rotation, inverse = payload   # C -> -R @ C (a translation), t -> -R.T @ t (a centre)
     matrix = ast.Attribute(ast.Name(rotation, ast.Load()), "T", ast.Load()) if inverse else ast.Name(rotation, ast.Load())
-    return ast.UnaryOp(ast.USub(), ast.BinOp(matrix, ast.MatMult(), copy.deepcopy(node)))
+    return ast.UnaryOp(ast.USub(), ast.BinOp(matrix, ast.MatMult(), copy_tree(node)))
 
 
 def _make_map_term(node, payload):
-    new = copy.deepcopy(node)   # a - b -> a - M @ b
+    new = copy_tree(node)   # a - b -> a - M @ b
     new.right = ast.BinOp(ast.Name(payload, ast.Load()), ast.MatMult(), new.right)
     return new
 
 
 def _make_slice_order(node, payload):
-    inner = copy.deepcopy(node.value.value)   # x[a][b] -> x[b][a]
-    return ast.Subscript(ast.Subscript(inner, copy.deepcopy(node.slice), ast.Load()), copy.deepcopy(node.value.slice),
+    inner = copy_tree(node.value.value)   # x[a][b] -> x[b][a]
+    return ast.Subscript(ast.Subscript(inner, copy_tree(node.slice), ast.Load()), copy_tree(node.value.slice),
                          ast.Load())
 
 
@@ -1570,26 +1569,26 @@ def _make_undecomposed(node, payload):
 def _make_keep_parameter(node, payload):
     # for d in ...: f0 = f0 * d / z0; ... f0 ... -> for d in ...: f = f0 * d / z0; ... f ...
     k, name, fresh = payload
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     statement = new.body[k]
     value = statement.value if isinstance(statement, ast.Assign) else \
         ast.BinOp(ast.Name(name, ast.Load()), statement.op, statement.value)
     new.body[k] = ast.copy_location(ast.Assign([ast.Name(fresh, ast.Store())], value), statement)
     for later in new.body[k + 1:]:
-        for n in ast.walk(later):
+        for n in walk(later):
             if isinstance(n, ast.Name) and n.id == name:
                 n.id = fresh
     return new
 
 
 def _make_dedent(node, payload):
-    new = copy.deepcopy(node)   # for ...: body; s -> for ...: body / s
+    new = copy_tree(node)   # for ...: body; s -> for ...: body / s
     last = new.body.pop()
     return ast.copy_location(ast.If(ast.Constant(True), [new, last], []), node)
 
 
 def _make_hoist(node, payload):
-    new = copy.deepcopy(node)   # for ...: s; body -> s / for ...: body
+    new = copy_tree(node)   # for ...: s; body -> s / for ...: body
     first = new.body.pop(0)
     return ast.copy_location(ast.If(ast.Constant(True), [first, new], []), node)
 
@@ -1602,12 +1601,12 @@ def _make_guard(node, payload):
 
 def _make_lower_bound(node, payload):
     # cols < width -> (cols >= 0) & (cols < width): an index below 0 counts from the end in NumPy
-    return ast.BinOp(ast.Compare(copy.deepcopy(node.left), [ast.GtE()], [ast.Constant(0)]), ast.BitAnd(),
-                     copy.deepcopy(node))
+    return ast.BinOp(ast.Compare(copy_tree(node.left), [ast.GtE()], [ast.Constant(0)]), ast.BitAnd(),
+                     copy_tree(node))
 
 
 def _make_drop_keyword(node, payload):
-    new = copy.deepcopy(node)   # cv2.undistortPoints(p, K, None, P=K) -> cv2.undistortPoints(p, K, None)
+    new = copy_tree(node)   # cv2.undistortPoints(p, K, None, P=K) -> cv2.undistortPoints(p, K, None)
     if isinstance(payload, int):   # cv2.resize(image, size, fx=s) -> cv2.resize(image, None, fx=s)
         new.args[payload] = ast.Constant(None)
     new.keywords = [k for k in new.keywords if k.arg != payload]
@@ -1615,7 +1614,7 @@ def _make_drop_keyword(node, payload):
 
 
 def _make_neutral_argument(node, payload):
-    new = copy.deepcopy(node)   # cv2.getRotationMatrix2D(centre, angle, zoom) -> (centre, angle, 1.0)
+    new = copy_tree(node)   # cv2.getRotationMatrix2D(centre, angle, zoom) -> (centre, angle, 1.0)
     if isinstance(payload, int):
         new.args[payload] = ast.Constant(1.0)
     else:
@@ -1627,13 +1626,13 @@ def _make_method_given(node, payload):
     keyword, member = payload   # cv2.findFundamentalMat(p1, p2) -> cv2.findFundamentalMat(p1, p2, method=cv2.FM_8POINT)
     module = _dotted(node.func).split(".", 1)[0]
     value = _parse(" | ".join(f"{module}.{name.strip()}" for name in member.split("|"))).body[0].value
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     new.keywords = list(new.keywords) + [ast.keyword(arg=keyword, value=value)]
     return new
 
 
 def _make_drop_argument(node, payload):
-    new = copy.deepcopy(node)   # _warp(image, M, size) -> _warp(image, M): the helper's default used
+    new = copy_tree(node)   # _warp(image, M, size) -> _warp(image, M): the helper's default used
     if isinstance(payload, int):
         del new.args[payload]
     new.keywords = [k for k in new.keywords if k.arg != payload]
@@ -1641,11 +1640,11 @@ def _make_drop_argument(node, payload):
 
 
 def _make_drop_flag(node, payload):
-    return copy.deepcopy(node.right if payload == "left" else node.left)   # a | b -> b (or a)
+    return copy_tree(node.right if payload == "left" else node.left)   # a | b -> b (or a)
 
 
 def _make_grey(node, payload):
-    new = copy.deepcopy(node)   # cv2.cornerSubPix(image, ...) -> the image in grey where it has 3 channels
+    new = copy_tree(node)   # cv2.cornerSubPix(image, ...) -> the image in grey where it has 3 channels
     image = ast.unparse(new.args[payload])
     new.args[payload] = parse(f"(cv2.cvtColor({image}, cv2.COLOR_BGR2GRAY) if {image}.ndim == 3 else {image})",
                               mode="eval").body
@@ -1654,7 +1653,7 @@ def _make_grey(node, payload):
 
 def _make_stride(node, payload):
     # A[i] -> A[2 * i], A[i + 1] -> A[2 * i + 1]: two rows (entries) per item where one was written
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     index = new.slice.elts[0] if isinstance(new.slice, ast.Tuple) else new.slice
     counter = index.left if isinstance(index, ast.BinOp) else index
     doubled = ast.BinOp(ast.Constant(2), ast.Mult(), counter)
@@ -1668,30 +1667,30 @@ def _make_stride(node, payload):
 
 
 def _make_float32(node, payload):
-    new = copy.deepcopy(node)   # cv2.remap(img, mx, my, ...) -> np.float32(mx), np.float32(my)
+    new = copy_tree(node)   # cv2.remap(img, mx, my, ...) -> np.float32(mx), np.float32(my)
     new.args = [_call("np.float32", arg) if position in payload else arg for position, arg in enumerate(new.args)]
     return new
 
 
 def _make_python_numbers(node, payload):
-    return ast.Call(_name("tuple"), [ast.Call(_name("map"), [_name("int"), copy.deepcopy(node.args[0])], [])], [])
+    return ast.Call(_name("tuple"), [ast.Call(_name("map"), [_name("int"), copy_tree(node.args[0])], [])], [])
 
 
 def _make_size_given(node, payload):
     parameter, size = payload   # apply_homography(moving, H) -> apply_homography(moving, H, dsize=(w, h))
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     new.keywords.append(ast.keyword(parameter, parse(size, mode="eval").body))
     return new
 
 
 def _make_len_axis(node, payload):
     # len(x) -> x.shape[1]: the length along the second axis
-    return ast.Subscript(ast.Attribute(copy.deepcopy(node.args[0]), "shape", ast.Load()), ast.Constant(1), ast.Load())
+    return ast.Subscript(ast.Attribute(copy_tree(node.args[0]), "shape", ast.Load()), ast.Constant(1), ast.Load())
 
 
 def _make_jump_size(node, payload):
     # (a != b) -> np.abs(a - b): a jump of k paid k times, not once
-    return ast.Call(_name("np.abs"), [ast.BinOp(copy.deepcopy(node.left), ast.Sub(), copy.deepcopy(node.comparators[0]))], [])
+    return ast.Call(_name("np.abs"), [ast.BinOp(copy_tree(node.left), ast.Sub(), copy_tree(node.comparators[0]))], [])
 
 
 def _nan_fill_minimised(node, parents, words) -> bool:
@@ -1712,7 +1711,7 @@ def _nan_fill_minimised(node, parents, words) -> bool:
     fn = _def_of(statement, parents)
     if root.id in _minimised_names(fn):
         return True
-    returned = any(isinstance(r, ast.Return) and isinstance(r.value, ast.Name) and r.value.id == root.id for r in ast.walk(fn))
+    returned = any(isinstance(r, ast.Return) and isinstance(r.value, ast.Name) and r.value.id == root.id for r in walk(fn))
     return returned and isinstance(fn, ast.FunctionDef) and fn.name in _minimising_callees(words)
 
 
@@ -1723,8 +1722,8 @@ def _minimising_callees(words) -> set:
         named = set()
         for other in words.module_defs.values():
             if any(isinstance(c, ast.Call) and _dotted(c.func).rsplit(".", 1)[-1] in ("argmin", "nanargmin", "amin")
-                   for c in ast.walk(other)):
-                named |= {n.id for n in ast.walk(other) if isinstance(n, ast.Name) and n.id != other.name}
+                   for c in walk(other)):
+                named |= {n.id for n in walk(other) if isinstance(n, ast.Name) and n.id != other.name}
         words.minimising_callees = named
     return words.minimising_callees
 
@@ -1734,9 +1733,9 @@ def _make_fill_inf(node, payload):
         return _name("np.inf")
     # np.zeros(s) -> np.full(s, np.inf); np.zeros_like(x) -> np.full_like(x, np.inf, dtype=np.float64)
     if _dotted(node.func).endswith("zeros_like"):
-        return ast.Call(_name("np.full_like"), [copy.deepcopy(node.args[0]), _name("np.inf")],
+        return ast.Call(_name("np.full_like"), [copy_tree(node.args[0]), _name("np.inf")],
                         [ast.keyword("dtype", _name("np.float64"))])
-    return ast.Call(_name("np.full"), [copy.deepcopy(node.args[0]), _name("np.inf")], [])
+    return ast.Call(_name("np.full"), [copy_tree(node.args[0]), _name("np.inf")], [])
 
 
 def _minimised(assign, parents) -> bool:
@@ -1751,7 +1750,7 @@ def _minimised_names(fn) -> set:
     """The names whose smallest entries ``fn`` takes (read once per def, kept on it: every table asks)."""
     if not hasattr(fn, "_minimised"):
         minimised = set()
-        for n in ast.walk(fn):
+        for n in walk(fn):
             if isinstance(n, ast.Call) and n.args and _dotted(n.func).rsplit(".", 1)[-1] in ("argmin", "nanargmin", "min", "amin") \
                     and isinstance(n.args[0], ast.Name):
                 minimised.add(n.args[0].id)
@@ -1764,20 +1763,20 @@ def _minimised_names(fn) -> set:
 
 def _make_accumulate(node, payload):
     if payload == "assign":   # total += x -> total = x
-        return ast.Assign([copy.deepcopy(node.target)], copy.deepcopy(node.value))
+        return ast.Assign([copy_tree(node.target)], copy_tree(node.value))
     if payload == "MatMultLeft":   # H = step[j] -> H = step[j] @ H (a chain multiplied on the left)
-        running = copy.deepcopy(node.targets[0])
+        running = copy_tree(node.targets[0])
         running.ctx = ast.Load()
-        return ast.Assign([copy.deepcopy(node.targets[0])], ast.BinOp(copy.deepcopy(node.value), ast.MatMult(), running))
-    target = copy.deepcopy(node.targets[0])   # total = x -> total += x
+        return ast.Assign([copy_tree(node.targets[0])], ast.BinOp(copy_tree(node.value), ast.MatMult(), running))
+    target = copy_tree(node.targets[0])   # total = x -> total += x
     target.ctx = ast.Store()
-    return ast.AugAssign(target, getattr(ast, payload)(), copy.deepcopy(node.value))
+    return ast.AugAssign(target, getattr(ast, payload)(), copy_tree(node.value))
 
 
 def _make_magnitude(node, payload):
     if payload == "wrap":   # a[i - j] -> a[np.abs(i - j)]
-        return ast.Call(_name("np.abs"), [copy.deepcopy(node)], [])
-    new = copy.deepcopy(node)   # np.argmin(v) -> np.argmin(np.abs(v))
+        return ast.Call(_name("np.abs"), [copy_tree(node)], [])
+    new = copy_tree(node)   # np.argmin(v) -> np.argmin(np.abs(v))
     part = new.args[0].value if payload == "complex" else new.args[0]   # (v.real -> v: its modulus)
     new.args[0] = ast.Call(_name("np.abs"), [part], [])
     return new
@@ -1793,12 +1792,12 @@ def _make_carry(node, payload):
 
 def _make_negate(node, payload):
     if payload == "drop":   # not m -> m
-        return copy.deepcopy(node.operand)
-    return ast.UnaryOp(ast.Not(), copy.deepcopy(node))   # x > t -> not x > t
+        return copy_tree(node.operand)
+    return ast.UnaryOp(ast.Not(), copy_tree(node))   # x > t -> not x > t
 
 
 def _make_frame_cross(node, payload):
-    new = copy.deepcopy(node)   # e3 = mean / |mean| -> e3 = np.cross(e1, e2): a frame's axis from the other two
+    new = copy_tree(node)   # e3 = mean / |mean| -> e3 = np.cross(e1, e2): a frame's axis from the other two
     first, second = payload
     new.value = ast.Call(_name("np.cross"), [ast.Name(first, ast.Load()), ast.Name(second, ast.Load())], [])
     return new
@@ -1812,13 +1811,13 @@ def _make_whole_vector(node, payload):
 def _make_quadrant(node, payload):
     # np.arctan(b / a) -> np.arctan2(b, a): the angle's quadrant from the signs of both
     ratio = node.args[0]
-    return ast.Call(_name(payload), [copy.deepcopy(ratio.left), copy.deepcopy(ratio.right)], [])
+    return ast.Call(_name(payload), [copy_tree(ratio.left), copy_tree(ratio.right)], [])
 
 
 def _make_swap_both(node, payload):
     # P1, P2 = P2, P1 -> P1, P2, pts1, pts2 = P2, P1, pts2, pts1: a pair exchanged with its twin pair
     first, second = payload
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     new.targets[0].elts += [ast.Name(first, ast.Store()), ast.Name(second, ast.Store())]
     new.value.elts += [ast.Name(second, ast.Load()), ast.Name(first, ast.Load())]
     return new
@@ -1842,7 +1841,7 @@ def _drawn_colour(node, parents, fn) -> bool:
             or fn is None:
         return False
     if not hasattr(fn, "_colour_names"):   # (read once per def: every constant 1 asks)
-        fn._colour_names = {call.args[at].id for call in ast.walk(fn)
+        fn._colour_names = {call.args[at].id for call in walk(fn)
                             if isinstance(call, ast.Call) and _dotted(call.func).startswith(("cv2.", "cv."))
                             and isinstance(at := DRAWING_COLOUR_AT.get(_dotted(call.func).rsplit(".", 1)[-1]), int)
                             and len(call.args) > at and isinstance(call.args[at], ast.Name)}
@@ -1850,17 +1849,17 @@ def _drawn_colour(node, parents, fn) -> bool:
 
 
 def _make_from_end(node, payload):
-    return ast.UnaryOp(ast.USub(), copy.deepcopy(node.right))   # len(A) - 1 -> -1: counted from the end
+    return ast.UnaryOp(ast.USub(), copy_tree(node.right))   # len(A) - 1 -> -1: counted from the end
 
 
 def _make_logic(node, payload):
-    new = copy.deepcopy(node)   # m1 & m2 <-> m1 | m2, a and b <-> a or b
+    new = copy_tree(node)   # m1 & m2 <-> m1 | m2, a and b <-> a or b
     new.op = getattr(ast, payload)()
     return new
 
 
 def _make_function(node, payload):
-    new = copy.deepcopy(node)
+    new = copy_tree(node)
     if isinstance(node.func, ast.Name) and node.func.id == "int" and payload.endswith(".floor"):
         new.args = [ast.Call(_name(payload), new.args, [])]   # int(t) -> int(np.floor(t)): a whole number still
         return new
@@ -1869,7 +1868,7 @@ def _make_function(node, payload):
 
 
 def _make_boolean_mask(node, payload):
-    return ast.Call(ast.Attribute(copy.deepcopy(node), "astype", ast.Load()), [ast.Name("bool", ast.Load())], [])
+    return ast.Call(ast.Attribute(copy_tree(node), "astype", ast.Load()), [ast.Name("bool", ast.Load())], [])
 
 
 def _make_part(node, payload):
@@ -1917,7 +1916,7 @@ def _make_written(node, payload):
 
 
 def _make_index_step(node, payload):
-    new = copy.deepcopy(node)   # out[y, x] = d -> out[y, x - 1] = d
+    new = copy_tree(node)   # out[y, x] = d -> out[y, x - 1] = d
     position, delta = payload
     stepped = ast.BinOp(new.slice.elts[position] if isinstance(new.slice, ast.Tuple) else new.slice,
                         ast.Sub() if delta < 0 else ast.Add(), ast.Constant(abs(delta)))
@@ -1929,7 +1928,7 @@ def _make_index_step(node, payload):
 
 
 def _make_store_name(node, payload):
-    new = copy.deepcopy(node)   # n = f(w) -> needed = f(w): the value stored under another name
+    new = copy_tree(node)   # n = f(w) -> needed = f(w): the value stored under another name
     new.targets = [ast.Name(payload, ast.Store())]
     return new
 
@@ -1990,7 +1989,7 @@ class _Words:
             a.arg: _PARAMETER_WORDS[a.arg] for a in fn.args.args if a.arg in _PARAMETER_WORDS}
         self.definitions: dict[str, list[tuple[int, ast.AST, int | None]]] = {}
         self.zipped: dict[str, set] = {}   # name -> its siblings: looped over beside it (zip), or one item's parts
-        for node in ast.walk(fn):
+        for node in walk(fn):
             if isinstance(node, ast.Assign):
                 for target in node.targets:
                     self._define(target, node.value, node.lineno)
@@ -2003,11 +2002,11 @@ class _Words:
                 self.zipped.setdefault(name, set()).update(names - {name})
         # A loop's own variable that nothing reads (`[f(X, f) for fl in f]`): the name that was to be used
         # in it, line of the loop -> names (a comprehension's, in scope on its own line too)
-        read = {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+        read = {n.id for n in walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
         self.unread_loop_names: dict[int, set] = {}
-        for node in ast.walk(fn):
+        for node in walk(fn):
             if isinstance(node, (ast.For, ast.comprehension)):
-                for target in ast.walk(node.target):
+                for target in walk(node.target):
                     if isinstance(target, ast.Name) and target.id not in read and target.id != "_":
                         self.unread_loop_names.setdefault(target.lineno, set()).add(target.id)
 
@@ -2067,7 +2066,7 @@ class _Words:
         line reading `cols[lit]`): what the line's values were made from, kept per line."""
         if not hasattr(self, "_related"):
             self._related, self._read_on = {}, {}
-            for node in ast.walk(self.fn):
+            for node in walk(self.fn):
                 if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
                     self._read_on.setdefault(node.lineno, set()).add(node.id)
         if line not in self._related:
@@ -2075,7 +2074,7 @@ class _Words:
             for name in self._read_on.get(line, ()):
                 for at, value, _ in self.definitions.get(name, ())[-2:]:
                     if at < line:
-                        made_from |= {n.id for n in ast.walk(value) if isinstance(n, ast.Name)}
+                        made_from |= {n.id for n in walk(value) if isinstance(n, ast.Name)}
             self._related[line] = frozenset(made_from)
         return self._related[line]
 
@@ -2306,7 +2305,7 @@ def runs(defs: dict, function: str) -> list[str]:
 def _calls_of(fn: ast.FunctionDef, defs: dict) -> list[str]:
     """The module functions ``fn`` names (a function named anywhere counts as called: a cost picked
     by ``(_ssd_volume if cost == "ssd" else _ncc_volume)(...)``, a helper passed as a callback)."""
-    return list(dict.fromkeys(n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)
+    return list(dict.fromkeys(n.id for n in walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)
                               and n.id in defs and n.id != fn.name))
 
 
@@ -2354,7 +2353,7 @@ def _context(function: str, where: str, defs: dict, api) -> str:
 def _sites(fn: ast.FunctionDef, words: _Words, phrased: bool = True):
     """(operator, ordinal, payload, line, phrase) for every change the operators make in ``fn``
     (``phrased``: only those with a phrase)."""
-    nodes = list(ast.walk(fn))
+    nodes = list(walk(fn))
     parents = _parents(fn)
     seen = set()
     for ordinal, node in enumerate(nodes):
@@ -2405,13 +2404,13 @@ def _counted_with_sizes(fn):
     """(range(C) call, [(constant k * C in an allocation's shape, k)]) for each loop counted by a number
     C >= 2 written in the code whose array, made in the same def, is sized by C, 2 C or 3 C (its rows)."""
     allocated = {}   # rows -> the constants writing them (looked up per loop: linear in the def)
-    for node in ast.walk(fn):
+    for node in walk(fn):
         if isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _ALLOCATIONS and node.args \
                 and isinstance(node.args[0], ast.Tuple) and node.args[0].elts:
             first = node.args[0].elts[0]
             if isinstance(first, ast.Constant) and type(first.value) is int:
                 allocated.setdefault(first.value, []).append(first)
-    for node in ast.walk(fn):
+    for node in walk(fn):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "range" \
                 and len(node.args) == 1 and isinstance(node.args[0], ast.Constant) \
                 and type(node.args[0].value) is int and node.args[0].value >= 2:
@@ -2429,11 +2428,11 @@ _LEAVES = (ast.Continue, ast.Break, ast.Return, ast.Raise)
 def _assigned(statement) -> set:
     targets = statement.targets if isinstance(statement, ast.Assign) else \
         [statement.target] if isinstance(statement, ast.AugAssign) else []
-    return {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+    return {n.id for t in targets for n in walk(t) if isinstance(n, ast.Name)}
 
 
 def _read(node) -> set:
-    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    return {n.id for n in walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
 
 
 def _reader_moves(statements, k):
@@ -2488,7 +2487,7 @@ def _containers_set(statement) -> set:
     for target in targets:
         while isinstance(target, (ast.Subscript, ast.Attribute)):
             target = target.value
-        made |= {n.id for n in ast.walk(target) if isinstance(n, ast.Name)}
+        made |= {n.id for n in walk(target) if isinstance(n, ast.Name)}
     return made
 
 
@@ -2496,7 +2495,7 @@ def _recurrence_starts(fn):
     """(the number, the text replacing it): a recurrence's first item set to a number (`energy[0] = 0.0`)
     above a loop filling the next items as a term of their own plus the rest (`energy[x] = costs[x] +
     best`): the first item is that term at its own index (`costs[0]`), the sum of nothing before it."""
-    for block in ast.walk(fn):
+    for block in walk(fn):
         statements = getattr(block, "body", None)
         if not isinstance(statements, list):
             continue
@@ -2511,7 +2510,7 @@ def _recurrence_starts(fn):
                 if not (isinstance(loop, ast.For) and isinstance(loop.target, ast.Name)):
                     continue
                 step = loop.target.id
-                for inner in ast.walk(loop):
+                for inner in walk(loop):
                     if isinstance(inner, ast.Assign) and len(inner.targets) == 1 \
                             and isinstance(inner.targets[0], ast.Subscript) and isinstance(inner.targets[0].value, ast.Name) \
                             and inner.targets[0].value.id == array and isinstance(inner.targets[0].slice, ast.Name) \
@@ -2525,7 +2524,7 @@ def _recurrence_starts(fn):
 
 def _updates_in_branch(test: ast.If) -> set:
     """The names an ``if`` (without loops in it) assigns in its branches' simple statements."""
-    if any(isinstance(n, (ast.For, ast.While)) for n in ast.walk(test)):
+    if any(isinstance(n, (ast.For, ast.While)) for n in walk(test)):
         return set()
     return {name for s in test.body + test.orelse if isinstance(s, (ast.Assign, ast.AugAssign)) for name in _assigned(s)}
 
@@ -2535,9 +2534,9 @@ def _overwritten_in_loop(fn):
     statement (`f0 = f0 * d / z0`, `scale *= s`), and nowhere else: each turn after the first starts from
     the turn before's value where the parameter's own was meant. ``fresh``: a name for each turn's value."""
     params = {a.arg for a in (*fn.args.posonlyargs, *fn.args.args, *fn.args.kwonlyargs)}
-    used = params | {n.id for n in ast.walk(fn) if isinstance(n, ast.Name)}
-    stores = Counter(n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store))
-    for loop in (n for n in ast.walk(fn) if isinstance(n, ast.For)):
+    used = params | {n.id for n in walk(fn) if isinstance(n, ast.Name)}
+    stores = Counter(n.id for n in walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store))
+    for loop in (n for n in walk(fn) if isinstance(n, ast.For)):
         for k, statement in enumerate(loop.body):
             target = statement.targets[0] if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
                 else statement.target if isinstance(statement, ast.AugAssign) else None
@@ -2557,7 +2556,7 @@ def _statement_moves(fn):
     just after a loop or an ``if`` that belongs as its body's last ("indent": `best = inliers` left out
     of `if count > best_count:`); a loop's or an ``if``'s last statement that belongs after it
     ("dedent": a `return` inside the loop)."""
-    for block in ast.walk(fn):
+    for block in walk(fn):
         for field in ("body", "orelse"):
             statements = getattr(block, field, None)
             if not isinstance(statements, list) or not statements or not isinstance(statements[0], ast.stmt):
@@ -2591,7 +2590,7 @@ def _statement_moves(fn):
                     # (after a loop: a statement reading what the loop sets, its own variable too; after an
                     # `if`: any update, which the condition was to guard)
                     inside = {n for s in statement.body for n in _assigned_anywhere(s)} | (
-                        {n.id for n in ast.walk(statement.target) if isinstance(n, ast.Name)}
+                        {n.id for n in walk(statement.target) if isinstance(n, ast.Name)}
                         if isinstance(statement, ast.For) else set())
                     if isinstance(following, _SIMPLE) and not isinstance(following, ast.Return) \
                             and (_read(following) & inside or (isinstance(statement, ast.If) and _assigned(following))):
@@ -2615,7 +2614,7 @@ def _statement_moves(fn):
                         yield "indent", statement, made, "first"
                     # (and a loop nested in it, whose turns each need their own sum: `total = 0.0` above
                     # `for i`, grown in `for k` and stored as E[i, j] in `for j`, where it belongs first)
-                    for inner in (n for n in ast.walk(statement) if isinstance(n, ast.For) and n is not statement):
+                    for inner in (n for n in walk(statement) if isinstance(n, ast.For) and n is not statement):
                         for made in _reset_each_turn(statements[max(0, k - _MOVE_REACH):k], inner):
                             yield "indent", inner, made, "first"
 
@@ -2633,7 +2632,7 @@ def _reset_each_turn(earlier, loop):
         if any(name in _read(s) | _assigned(s) for s in earlier[k + 1:]):
             continue
         grown = read = False
-        for s in (n for n in ast.walk(loop) if isinstance(n, ast.stmt) and not isinstance(n, ast.For)):
+        for s in (n for n in walk(loop) if isinstance(n, ast.stmt) and not isinstance(n, ast.For)):
             if _grows(s, name):
                 grown = True
             elif not isinstance(s, (ast.If, ast.While, ast.With, ast.Try)) and name in _read(s):
@@ -2670,7 +2669,7 @@ def _stored_into(loop, name: str) -> bool:
     """Whether ``loop`` writes items of ``name`` (`points[i] = ...`)."""
     return any(isinstance(n, (ast.Assign, ast.AugAssign)) and any(
         isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name) and t.value.id == name
-        for t in (n.targets if isinstance(n, ast.Assign) else [n.target])) for n in ast.walk(loop))
+        for t in (n.targets if isinstance(n, ast.Assign) else [n.target])) for n in walk(loop))
 
 
 def _allocates(statement) -> bool:
@@ -2683,7 +2682,7 @@ def _allocates(statement) -> bool:
 
 def _kept_each_time(loop, name: str) -> bool:
     """Whether the loop keeps ``name`` itself at every turn: appended, or stored whole as an item."""
-    for node in ast.walk(loop):
+    for node in walk(loop):
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in ("append", "insert") \
                 and any(isinstance(a, ast.Name) and a.id == name for a in node.args):
             return True
@@ -2694,14 +2693,14 @@ def _kept_each_time(loop, name: str) -> bool:
 
 
 def _assigned_anywhere(statement) -> set:
-    return {n for s in ast.walk(statement) if isinstance(s, (ast.Assign, ast.AugAssign)) for n in _assigned(s)}
+    return {n for s in walk(statement) if isinstance(s, (ast.Assign, ast.AugAssign)) for n in _assigned(s)}
 
 
 def _sequential_updates(fn):
     """(first, second): an assignment updating a name from its own value (`x = x * r + ...`) followed
     by one reading the updated name (`y = y * r + ... x ...`), where both belong computed from the old
     values at once (`x, y = ..., ...`: a point's coordinates updated one after the other)."""
-    for block in ast.walk(fn):
+    for block in walk(fn):
         for field in ("body", "orelse"):
             statements = getattr(block, field, None)
             if not isinstance(statements, list):
@@ -2712,7 +2711,7 @@ def _sequential_updates(fn):
                     continue
                 a, b = first.targets[0].id, second.targets[0].id
                 reads = lambda value, name: any(isinstance(n, ast.Name) and n.id == name  # noqa: E731
-                                                and isinstance(n.ctx, ast.Load) for n in ast.walk(value))
+                                                and isinstance(n.ctx, ast.Load) for n in walk(value))
                 # (the updated name read again after the pair, or in a loop's next turn: else the update is dead
                 # once the pair is made at once -- a removal of it, told as one)
                 again = isinstance(block, (ast.For, ast.While)) or any(reads(s, a) for s in statements[k + 2:])
@@ -2874,7 +2873,7 @@ def _changes(node, parents, words: _Words, line):
         # `marks = pts * scale` for a wide image: the answer no longer the size it was given)
         made = {s.targets[0].id for s in node.body if len(s.targets) == 1}
         before = {n.id for s in getattr(parent, "body", ()) if getattr(s, "lineno", node.lineno) < node.lineno
-                  for n in ast.walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+                  for n in walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
         if made & before:
             yield "drop_statement", None, ""
     if isinstance(node, ast.Assign) and len(node.targets) == 1:
@@ -2955,8 +2954,8 @@ def _changes(node, parents, words: _Words, line):
         # (the student's code only: a formula written with values already scaled where their sources belong --
         # the tangential terms of a distortion given the radially distorted x and y, `xr = x * radial`)
         derived = _scaled_copies(words.fn)
-        read = sorted({n.id for n in ast.walk(node.value) if isinstance(n, ast.Name) and n.id in derived})
-        if read and not any(isinstance(t, ast.Name) and t.id in derived for t in ast.walk(node.targets[0])):
+        read = sorted({n.id for n in walk(node.value) if isinstance(n, ast.Name) and n.id in derived})
+        if read and not any(isinstance(t, ast.Name) and t.id in derived for t in walk(node.targets[0])):
             yield "source_names", tuple((name, derived[name]) for name in read), ""
     if words.student and isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Load) \
             and isinstance(node.slice, ast.Tuple) and len(node.slice.elts) == 2 and _whole_slice(node.slice.elts[0]) \
@@ -3046,7 +3045,7 @@ def _log_of_a_ratio(node, short: str, parent) -> bool:
     if short not in _LOGS or not (isinstance(parent, ast.BinOp) and isinstance(parent.op, ast.Div)):
         return False
     other = parent.right if parent.left is node else parent.left
-    return any(isinstance(n, ast.Call) and _dotted(n.func).rsplit(".", 1)[-1] in _LOGS for n in ast.walk(other))
+    return any(isinstance(n, ast.Call) and _dotted(n.func).rsplit(".", 1)[-1] in _LOGS for n in walk(other))
 
 
 def _root(node, parents):
@@ -3062,7 +3061,7 @@ def _written_into(fn, name: str, after: int) -> bool:
     return any(isinstance(node, (ast.Assign, ast.AugAssign)) and node.lineno > after
                and any(isinstance(t, ast.Subscript) and isinstance(t.value, ast.Name) and t.value.id == name
                        for t in (node.targets if isinstance(node, ast.Assign) else [node.target]))
-               for node in ast.walk(fn))
+               for node in walk(fn))
 
 
 def _extreme_of(node) -> tuple[str, str] | None:
@@ -3109,7 +3108,7 @@ def _measured_after_filtering(node) -> str | None:
     of absolute differences, not the difference of its means (the text, or None)."""
     if isinstance(node, ast.Call) and _dotted(node.func) in ("np.abs", "np.absolute", "abs", "np.fabs", "np.square") \
             and len(node.args) == 1 and not node.keywords:
-        difference, wrap = node.args[0], lambda inner: ast.Call(copy.deepcopy(node.func), [inner], [])
+        difference, wrap = node.args[0], lambda inner: ast.Call(copy_tree(node.func), [inner], [])
     elif isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) and isinstance(node.right, ast.Constant) \
             and node.right.value == 2:
         difference, wrap = node.left, lambda inner: ast.BinOp(inner, ast.Pow(), ast.Constant(2))
@@ -3125,9 +3124,9 @@ def _measured_after_filtering(node) -> str | None:
         return None
     if _dotted(left.func).rsplit(".", 1)[-1] in _UNARY | {"asarray", "array", "float32", "float64"}:
         return None   # (a conversion or a pointwise function: nothing summed over a block)
-    inner = wrap(ast.BinOp(copy.deepcopy(left.args[0]), ast.Sub(), copy.deepcopy(right.args[0])))
-    return ast.unparse(ast.Call(copy.deepcopy(left.func), [inner, *copy.deepcopy(left.args[1:])],
-                                copy.deepcopy(left.keywords)))
+    inner = wrap(ast.BinOp(copy_tree(left.args[0]), ast.Sub(), copy_tree(right.args[0])))
+    return ast.unparse(ast.Call(copy_tree(left.func), [inner, *copy_tree(left.args[1:])],
+                                copy_tree(left.keywords)))
 
 
 def _mask_names(fn) -> frozenset:
@@ -3145,7 +3144,7 @@ def _mask_names(fn) -> frozenset:
                     else [None] * len(target.elts)
                 for part, part_value in zip(target.elts, pairs):
                     bind(part, part_value)
-        for statement in ast.walk(fn):
+        for statement in walk(fn):
             if isinstance(statement, ast.Assign):
                 for target in statement.targets:
                     bind(target, statement.value)
@@ -3200,13 +3199,13 @@ def _conversion_inverted(node, parent):
     if not (isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div))) \
             or (isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Mult, ast.Div))):
         return
-    hundred = [n for n in ast.walk(node) if isinstance(n, ast.Constant) and type(n.value) in (int, float) and n.value == 180]
-    pi = [n for n in ast.walk(node) if isinstance(n, ast.Attribute) and n.attr == "pi"
+    hundred = [n for n in walk(node) if isinstance(n, ast.Constant) and type(n.value) in (int, float) and n.value == 180]
+    pi = [n for n in walk(node) if isinstance(n, ast.Attribute) and n.attr == "pi"
           and _dotted(n) in ("np.pi", "numpy.pi", "math.pi")]
     if len(hundred) != 1 or len(pi) != 1:
         return
-    swapped = copy.deepcopy(node)
-    for n in ast.walk(swapped):
+    swapped = copy_tree(node)
+    for n in walk(swapped):
         for field, child in ast.iter_fields(n):
             if isinstance(child, ast.Constant) and type(child.value) in (int, float) and child.value == 180:
                 setattr(n, field, _name(_dotted(pi[0])))
@@ -3240,9 +3239,9 @@ def _loop_item_changes(node, words):
     if id(loop) not in words.loop_indices:   # array name -> the indices the loop's variable gives it
         variable, indexed = loop.target.id, {}
         for statement in loop.body:
-            for n in ast.walk(statement):
+            for n in walk(statement):
                 if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) \
-                        and any(isinstance(m, ast.Name) and m.id == variable for m in ast.walk(n.slice)):
+                        and any(isinstance(m, ast.Name) and m.id == variable for m in walk(n.slice)):
                     indexed.setdefault(n.value.id, set()).add(ast.unparse(n.slice))
         words.loop_indices[id(loop)] = indexed
     indices = words.loop_indices[id(loop)].get(node.value.id)
@@ -3331,7 +3330,7 @@ def _choices(fn) -> dict:
     else float(z_avg)`), read once per def."""
     if not hasattr(fn, "_choices"):
         fn._choices = {}
-        for n in ast.walk(fn):
+        for n in walk(fn):
             if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name) \
                     and isinstance(n.value, ast.IfExp):
                 for branch in (n.value.body, n.value.orelse):
@@ -3368,7 +3367,7 @@ def _twin_values(node, parent, parents):
     if None in twins:
         return
     renames = dict(zip(twins, names))
-    values = [_OtherAxis(renames).visit(copy.deepcopy(single[twin])) for twin in twins]
+    values = [_OtherAxis(renames).visit(copy_tree(single[twin])) for twin in twins]
     text = ", ".join(ast.unparse(v) for v in values)
     if text != ast.unparse(node).strip("()"):
         yield "twin_values", f"({text})", ""
@@ -3388,13 +3387,13 @@ def _twin_test(node, parent, parents):
     if not (isinstance(parent, (ast.If, ast.IfExp, ast.While)) and parent.test is node) \
             or isinstance(node, ast.BoolOp):
         return
-    read = {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+    read = {n.id for n in walk(node) if isinstance(n, ast.Name)}
     fn = _def_of(node, parents)
-    known = {a.arg for a in ast.walk(fn.args) if isinstance(a, ast.arg)} if hasattr(fn, "args") else set()
+    known = {a.arg for a in walk(fn.args) if isinstance(a, ast.arg)} if hasattr(fn, "args") else set()
     for name in sorted(read):
         twins = [other for other in known if other not in read and twin_names(name, other)]
         if len(twins) == 1:
-            twin = ast.unparse(_Renamed(name, twins[0]).visit(copy.deepcopy(node)))
+            twin = ast.unparse(_Renamed(name, twins[0]).visit(copy_tree(node)))
             yield "twin_test", f"{ast.unparse(node)} and {twin}", ""
 
 
@@ -3410,7 +3409,7 @@ def _never_read(fn) -> list[tuple[str, int]]:
     if not hasattr(fn, "_never_read"):
         assigned: dict = {}
         read = set()
-        for n in ast.walk(fn):
+        for n in walk(fn):
             if isinstance(n, ast.Name):
                 if isinstance(n.ctx, ast.Load):
                     read.add(n.id)
@@ -3431,7 +3430,7 @@ def _neutral_value(node, parent, parents):
     name, fn = parent.targets[0].id, _def_of(node, parents)
     uses = _uses_of(fn).get(name, [])
     if len(uses) < 2 or sum(isinstance(target, ast.Name) and target.id == name
-                            for n in ast.walk(fn) if isinstance(n, ast.Assign) for target in n.targets) != 1:
+                            for n in walk(fn) if isinstance(n, ast.Assign) for target in n.targets) != 1:
         return   # (a value read once, or assigned again, is a step of another kind)
     if isinstance(node, ast.Constant):
         # (a number of the student's own only added or subtracted wherever it is read: a margin, a gap between two
@@ -3448,13 +3447,13 @@ def _uses_of(fn) -> dict:
     """name -> the operator of each BinOp it is read as an operand of (None for any other read), once per def."""
     if not hasattr(fn, "_uses_of"):
         operators = {}
-        for n in ast.walk(fn):
+        for n in walk(fn):
             if isinstance(n, ast.BinOp):
                 for side in (n.left, n.right):
                     if isinstance(side, ast.Name):
                         operators[id(side)] = n.op
         uses: dict = {}
-        for n in ast.walk(fn):
+        for n in walk(fn):
             if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load):
                 uses.setdefault(n.id, []).append(operators.get(id(n)))
         fn._uses_of = uses
@@ -3475,11 +3474,11 @@ def _stacked_last(node, parents):
 def _lists_made(fn) -> set[str]:
     """The names ``fn`` makes lists of items in (a comprehension, or `[]` appended to), read once per def."""
     if not hasattr(fn, "_lists_made"):
-        made = {t.id for node in ast.walk(fn) if isinstance(node, ast.Assign) and isinstance(node.value, ast.ListComp)
+        made = {t.id for node in walk(fn) if isinstance(node, ast.Assign) and isinstance(node.value, ast.ListComp)
                 for t in node.targets if isinstance(t, ast.Name)}
-        started = {t.id for node in ast.walk(fn) if isinstance(node, ast.Assign) and isinstance(node.value, ast.List)
+        started = {t.id for node in walk(fn) if isinstance(node, ast.Assign) and isinstance(node.value, ast.List)
                    and not node.value.elts for t in node.targets if isinstance(t, ast.Name)}
-        appended = {node.func.value.id for node in ast.walk(fn) if isinstance(node, ast.Call)
+        appended = {node.func.value.id for node in walk(fn) if isinstance(node, ast.Call)
                     and isinstance(node.func, ast.Attribute) and node.func.attr == "append"
                     and isinstance(node.func.value, ast.Name)}
         fn._lists_made = made | (started & appended)
@@ -3504,7 +3503,7 @@ def _estimator_changes(node, parents):
         given = next((k.value for k in node.keywords if k.arg == keyword), None)
         if given is not None and not isinstance(given, ast.Constant):
             return
-        flipped = copy.deepcopy(node)
+        flipped = copy_tree(node)
         flipped.keywords = [k for k in flipped.keywords if k.arg != keyword]
         on = bool(given.value) if given is not None else False
         if not on:
@@ -3525,7 +3524,7 @@ def _calls_a_spread(fn) -> bool:
     """Whether ``fn`` takes a covariance, a standard deviation or a variance (read once per def)."""
     if not hasattr(fn, "_calls_a_spread"):
         fn._calls_a_spread = any(isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _SPREADS
-                                 for node in ast.walk(fn))
+                                 for node in walk(fn))
     return fn._calls_a_spread
 
 
@@ -3533,7 +3532,7 @@ def _values_of(fn) -> dict:
     """name -> the values ``fn`` assigns it alone (`n = len(src)`), with their lines, read once per def."""
     if not hasattr(fn, "_values_of"):
         fn._values_of = {}
-        for node in ast.walk(fn):
+        for node in walk(fn):
             if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
                 fn._values_of.setdefault(node.targets[0].id, []).append((node.lineno, node.value))
     return fn._values_of
@@ -3552,7 +3551,7 @@ def _shapes_read(fn) -> list[str]:
     """The parameters of ``fn`` whose ``.shape`` it reads (the inputs an array may be made like; read once per def)."""
     if not hasattr(fn, "_shapes_read"):
         params = {a.arg for a in fn.args.posonlyargs + fn.args.args + fn.args.kwonlyargs}
-        fn._shapes_read = sorted({n.value.id for n in ast.walk(fn) if isinstance(n, ast.Attribute)
+        fn._shapes_read = sorted({n.value.id for n in walk(fn) if isinstance(n, ast.Attribute)
                                   and n.attr == "shape" and isinstance(n.value, ast.Name) and n.value.id in params})
     return fn._shapes_read
 
@@ -3561,11 +3560,11 @@ def _loop_bounds(loop, fn) -> list[str]:
     """The names a while loop's test reads that the def sets before the loop and the loop never sets (the
     bounds it is meant to update: RANSAC's adaptive count), read once per loop."""
     if not hasattr(loop, "_bounds"):
-        set_in_loop = {n.id for n in ast.walk(loop) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+        set_in_loop = {n.id for n in walk(loop) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
         params = {a.arg for a in fn.args.args + fn.args.kwonlyargs}
         set_before = {n.id for s in fn.body if s.lineno < loop.lineno
-                      for n in ast.walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
-        loop._bounds = sorted({n.id for n in ast.walk(loop.test) if isinstance(n, ast.Name)
+                      for n in walk(s) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+        loop._bounds = sorted({n.id for n in walk(loop.test) if isinstance(n, ast.Name)
                                and n.id not in set_in_loop and n.id in set_before and n.id not in params})
     return loop._bounds
 
@@ -3585,7 +3584,7 @@ def _loop_names(node, parents) -> set[str]:
     while id(node) in parents:
         node = parents[id(node)][0]
         if isinstance(node, ast.For):
-            return {n.id for n in ast.walk(node.target) if isinstance(n, ast.Name)}
+            return {n.id for n in walk(node.target) if isinstance(n, ast.Name)}
         if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
             break
     return set()
@@ -3702,20 +3701,20 @@ def _student_changes(node, parent, parents, words):
         yield "scale_xy", f"{node.left.id} * np.array([{node.right.id}, {node.right.id}, 1.0])", ""
     if isinstance(node, ast.Attribute) and node.attr == "T" and isinstance(node.ctx, ast.Load) \
             and isinstance(node.value, (ast.Name, ast.Call)) \
-            and any(isinstance(n, ast.Name) and _image_name(n.id) for n in ast.walk(node.value)):
+            and any(isinstance(n, ast.Name) and _image_name(n.id) for n in walk(node.value)):
         # (an image's rows and columns exchanged with .T, which reverses every axis: a colour image's channels
         # come first)
         # (a .T inside it is the same slip: `_down(image.T, tx).T` -> both swapped, the one change nested in the other)
-        yield "swap_axes", f"np.swapaxes({ast.unparse(_SwapAxes().visit(copy.deepcopy(node.value)))}, 0, 1)", ""
+        yield "swap_axes", f"np.swapaxes({ast.unparse(_SwapAxes().visit(copy_tree(node.value)))}, 0, 1)", ""
     yield from _conversion_inverted(node, parent)
     if isinstance(node, ast.Call) and _dotted(node.func) in ("cv2.warpAffine", "cv.warpAffine") and len(node.args) >= 2 \
             and isinstance(node.args[1], ast.Subscript) and isinstance(node.args[1].slice, ast.Slice) \
             and node.args[1].slice.lower is None and isinstance(node.args[1].slice.upper, ast.Constant) \
             and node.args[1].slice.upper.value == 2:
         # a homography's first two rows given to an affine warp: `cv2.warpAffine(img, H[:2], size)`
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         new.func = _name(_dotted(node.func).replace("warpAffine", "warpPerspective"))
-        new.args[1] = copy.deepcopy(node.args[1].value)
+        new.args[1] = copy_tree(node.args[1].value)
         yield "perspective_warp", ast.unparse(new), ""
     if isinstance(node, ast.Call) and _dotted(node.func) in ("np.linalg.norm", "numpy.linalg.norm") and node.args \
             and isinstance(node.args[0], ast.BinOp) and isinstance(node.args[0].op, ast.Sub) \
@@ -3727,7 +3726,7 @@ def _student_changes(node, parent, parents, words):
     if given is not None and not (isinstance(given.value, ast.Constant) and given.value.value is None) \
             and not isinstance(given.value, ast.IfExp):
         # scikit-image told the last axis holds colours on a grey image too (its columns taken for channels)
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         image = node.args[0].id
         new.keywords = [ast.keyword("channel_axis", parse(f"{ast.unparse(given.value)} if {image}.ndim == 3 else None",
                                                           mode="eval").body) if k.arg == "channel_axis" else k
@@ -3827,7 +3826,7 @@ def _student_changes(node, parent, parents, words):
             and not any(isinstance(part, ast.Constant) for part in (node.right.left, node.right.right)):
         # a bit read one place off: `(g >> (n - i)) & 1` where `n - 1 - i` belongs (no constant to move)
         for step in (ast.Sub(), ast.Add()):
-            moved = copy.deepcopy(node)
+            moved = copy_tree(node)
             moved.right = ast.BinOp(moved.right, step, ast.Constant(1))
             yield "zero_based", ast.unparse(moved), ""
     if isinstance(parent, ast.Assign) and parent.value is node and isinstance(node, (ast.List, ast.Tuple)) \
@@ -4317,7 +4316,7 @@ def _in_radians(node, parents) -> bool:
     function assigns only such values (a conversion to radians of it is no slip of the student's)."""
     def with_pi(value) -> bool:
         return any(isinstance(n, (ast.Name, ast.Attribute)) and _dotted(n).rsplit(".", 1)[-1] == "pi"
-                   or isinstance(n, ast.Call) and _dotted(n.func) in _ANGLE_CONVERSIONS for n in ast.walk(value))
+                   or isinstance(n, ast.Call) and _dotted(n.func) in _ANGLE_CONVERSIONS for n in walk(value))
     if with_pi(node):
         return True
     if not isinstance(node, ast.Name):
@@ -4349,11 +4348,11 @@ def _frame_reading(words):
         fn = words.fn
         params = {a.arg for a in fn.args.args + fn.args.kwonlyargs}
         stored, resolved, stacks = set(), [], []
-        for node in ast.walk(fn):
+        for node in walk(fn):
             if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
                 stored.add(node.id)
             elif isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
-                read = {n.id for n in ast.walk(node.value) if isinstance(n, ast.Name)}
+                read = {n.id for n in walk(node.value) if isinstance(n, ast.Name)}
                 if read & params:
                     resolved.append((node.lineno, node.targets[0].id, read))
             elif isinstance(node, ast.Call) and _dotted(node.func).rsplit(".", 1)[-1] in _ROWS_STACKED and node.args \
@@ -4517,8 +4516,8 @@ def _exchanged_sides(node, words):
     where `m, n` come from one pair: the ratio test inverted): the two names exchanged throughout it."""
     if not (isinstance(node, ast.Compare) and len(node.comparators) == 1):
         return
-    left = {n.id for n in ast.walk(node.left) if isinstance(n, ast.Name)}
-    right = {n.id for n in ast.walk(node.comparators[0]) if isinstance(n, ast.Name)}
+    left = {n.id for n in walk(node.left) if isinstance(n, ast.Name)}
+    right = {n.id for n in walk(node.comparators[0]) if isinstance(n, ast.Name)}
     for a in sorted(left - right):
         for b in sorted((right - left) & words.zipped.get(a, set())):
             yield "exchange", _names_exchanged(node, a, b), ""
@@ -4536,11 +4535,11 @@ def _exchanged_in_product(node, parent):
         and len(node.elts) >= 2 and all(isinstance(row, (ast.List, ast.Tuple)) for row in node.elts)
     if not (product or rows):
         return
-    names = sorted({n.id for n in ast.walk(node) if isinstance(n, ast.Name)})
+    names = sorted({n.id for n in walk(node) if isinstance(n, ast.Name)})
     for a, b in itertools.combinations(names, 2):
         if twin_names(a, b):
-            exchanged = copy.deepcopy(node)
-            for name in ast.walk(exchanged):
+            exchanged = copy_tree(node)
+            for name in walk(exchanged):
                 if isinstance(name, ast.Name) and name.id in (a, b):
                     name.id = b if name.id == a else a
             yield "exchange", ast.unparse(exchanged), ""
@@ -4583,7 +4582,7 @@ def _homogeneous_arguments(node, words):
         index is None and value is not None and re.search(r"homogeneous|\bones(_like)?\(", ast.unparse(value))
         for _, value, index in words.definitions.get(argument.id, ()))]
     for positions in ([homogeneous] if len(homogeneous) > 1 else []) + [[p] for p in homogeneous]:
-        new = copy.deepcopy(node)
+        new = copy_tree(node)
         for position in positions:
             new.args[position] = parse(f"{node.args[position].id}[:, :2]", mode="eval").body
         yield "drop_w", ast.unparse(new), ""
@@ -4603,7 +4602,7 @@ def _shape_unpackings(fn) -> tuple:
     """``((line, (height, width)), ...)``: every `h, w = X.shape[:2]` of the def ``fn``, read once (each call of a
     helper asks for those above it)."""
     pairs = []
-    for node in ast.walk(fn):
+    for node in walk(fn):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 \
                 and isinstance(node.targets[0], ast.Tuple) and len(node.targets[0].elts) == 2 \
                 and all(isinstance(e, ast.Name) for e in node.targets[0].elts) \
@@ -4705,8 +4704,8 @@ def _shape_changes(node: ast.Call):
         array = size.value.value
     else:
         return
-    new = copy.deepcopy(node)
-    new.args[0] = ast.Call(_name("np.shape"), [copy.deepcopy(array)], [])
+    new = copy_tree(node)
+    new.args[0] = ast.Call(_name("np.shape"), [copy_tree(array)], [])
     yield "whole_shape", ast.unparse(new), ""
 
 
@@ -4721,9 +4720,9 @@ def _brackets_left_out(node) -> str | None:
         and isinstance(node.left.op, (ast.Add, ast.Sub)) else (None, node.left)
     if not (isinstance(product, ast.BinOp) and isinstance(product.op, ast.Mult)):
         return None
-    inner = ast.BinOp(copy.deepcopy(product.right), node.op, copy.deepcopy(node.right))
-    grouped = ast.BinOp(copy.deepcopy(product.left), ast.Mult(), inner)
-    whole = grouped if before is None else ast.BinOp(copy.deepcopy(before), node.left.op, grouped)
+    inner = ast.BinOp(copy_tree(product.right), node.op, copy_tree(node.right))
+    grouped = ast.BinOp(copy_tree(product.left), ast.Mult(), inner)
+    whole = grouped if before is None else ast.BinOp(copy_tree(before), node.left.op, grouped)
     return ast.unparse(whole)
 
 
@@ -4732,13 +4731,13 @@ def _holds_bytes(fn) -> bool:
     """Whether the def ``fn`` makes 8-bit values (uint8 named, or an OpenCV difference of images)."""
     return any((isinstance(n, ast.Attribute) and n.attr == "uint8") or (isinstance(n, ast.Constant) and n.value == "uint8")
                or (isinstance(n, ast.Call) and _dotted(n.func) in ("cv2.absdiff", "cv2.subtract"))
-               for n in ast.walk(fn))
+               for n in walk(fn))
 
 
 @functools.lru_cache(maxsize=64)
 def _calls_opencv(fn) -> bool:
     """Whether the def ``fn`` calls OpenCV (whose functions take float32 points and Python numbers only)."""
-    return any(isinstance(n, ast.Call) and _dotted(n.func).startswith(("cv2.", "cv.")) for n in ast.walk(fn))
+    return any(isinstance(n, ast.Call) and _dotted(n.func).startswith(("cv2.", "cv.")) for n in walk(fn))
 
 
 def _python_numbers(node: ast.Call):
@@ -4918,7 +4917,7 @@ def _chained_product(assign, parents) -> bool:
     name = assign.targets[0].id
     fn = _def_of(assign, parents)
     if not hasattr(fn, "_identities"):   # (read once per def: every assignment in a loop asks)
-        fn._identities = [(n.targets[0].id, n.lineno) for n in ast.walk(fn)
+        fn._identities = [(n.targets[0].id, n.lineno) for n in walk(fn)
                           if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name)
                           and isinstance(n.value, ast.Call) and _dotted(n.value.func).rsplit(".", 1)[-1] in ("eye", "identity")]
     return any(started == name and line < assign.lineno for started, line in fn._identities)
@@ -4946,7 +4945,7 @@ def _mode_test(test) -> bool:
     None for "not given" (`x is None`), a type (`isinstance(x, list)`). Turned round, it runs the code
     of another case -- which may pass a check by chance (NCC's search where SSD's is wrong) and is no
     slip a student makes."""
-    for node in ast.walk(test):
+    for node in walk(test):
         if isinstance(node, ast.Constant) and (isinstance(node.value, str) or node.value is None):
             return True
         if isinstance(node, ast.Compare) and any(isinstance(op, (ast.Is, ast.IsNot)) for op in node.ops):
@@ -4996,7 +4995,7 @@ def _logic_changes(node, parent, parents):
             yield "accumulate", "MatMultLeft", ""
             yield "accumulate", "MatMult", ""
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Subscript) \
-            and any(isinstance(part, ast.Slice) for part in ast.walk(node.targets[0].slice)) \
+            and any(isinstance(part, ast.Slice) for part in walk(node.targets[0].slice)) \
             and isinstance(node.value, (ast.Name, ast.Constant)):
         yield "accumulate", "Mult", ""   # a block set to a scale where it was to be scaled: T[:2, :2] = s
     if isinstance(node, ast.Call) and _dotted(node.func) in ("np.zeros", "np.zeros_like", "numpy.zeros", "numpy.zeros_like") \
@@ -5037,11 +5036,11 @@ def _index(fn, parents) -> tuple[dict, dict]:
     [(line, name)] of the locals holding its mean)."""
     if not hasattr(fn, "_slip_index"):
         made, means = {}, {}
-        for assign in (n for n in ast.walk(fn) if isinstance(n, ast.Assign) and len(n.targets) == 1):
+        for assign in (n for n in walk(fn) if isinstance(n, ast.Assign) and len(n.targets) == 1):
             target, value = assign.targets[0], assign.value
             if isinstance(target, ast.Name) and not _in_loop(assign, parents):
                 made.setdefault(target.id, []).append(
-                    (assign.lineno, frozenset(m.id for m in ast.walk(value) if isinstance(m, ast.Name))))
+                    (assign.lineno, frozenset(m.id for m in walk(value) if isinstance(m, ast.Name))))
             pairs = zip(target.elts, value.elts) if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) \
                 and len(target.elts) == len(value.elts) else [(target, value)]   # (`c1, c2 = a.mean(0), b.mean(0)`)
             for name, call in pairs:
@@ -5065,16 +5064,16 @@ def _parts(node, parents) -> list:
     fn = _def_of(node, parents)
     if not hasattr(fn, "_parts_index"):
         parts = {}
-        for sub in ast.walk(fn):
+        for sub in walk(fn):
             if isinstance(sub, ast.Subscript) and isinstance(sub.ctx, ast.Load) and isinstance(sub.value, ast.Name) \
-                    and not any(isinstance(n, ast.Call) for n in ast.walk(sub.slice)):
+                    and not any(isinstance(n, ast.Call) for n in walk(sub.slice)):
                 parts.setdefault(sub.value.id, {})[ast.unparse(sub)] = None   # (a dict: ordered, no repeats)
                 # (and the component after a leading slice: `X[:, 2]` beside `X[:, :2]`, a point's depth
                 # beside its first two coordinates)
                 last = sub.slice.elts[-1] if isinstance(sub.slice, ast.Tuple) else sub.slice
                 if isinstance(last, ast.Slice) and last.lower is None and last.step is None \
                         and isinstance(last.upper, ast.Constant) and type(last.upper.value) is int and last.upper.value > 0:
-                    after = copy.deepcopy(sub)
+                    after = copy_tree(sub)
                     if isinstance(after.slice, ast.Tuple):
                         after.slice.elts[-1] = ast.Constant(last.upper.value)
                     else:
@@ -5128,7 +5127,7 @@ def _restarted(node, parents) -> str | None:
             and _in_loop(statement, parents)):
         return None
     running = statement.targets[0].id
-    if running == source.id or any(isinstance(n, ast.Name) and n.id == running for n in ast.walk(statement.value)):
+    if running == source.id or any(isinstance(n, ast.Name) and n.id == running for n in walk(statement.value)):
         return None
     fn = _def_of(statement, parents)
     # (made before the loop from the same input: `out = image.copy()`, `out = np.array(image)`)
@@ -5155,7 +5154,7 @@ _SQUARED = {"abs", "absolute", "fabs"}
 def _squares(node) -> bool:
     return any(isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and isinstance(n.right, ast.Constant)
                and n.right.value == 2 or isinstance(n, ast.Call) and _dotted(n.func) in ("np.square", "numpy.square")
-               for n in ast.walk(node))
+               for n in walk(node))
 
 
 _ROOT_CALLS = ("np.sqrt", "numpy.sqrt", "math.sqrt", "np.hypot", "numpy.hypot", "math.hypot", "np.linalg.norm",
@@ -5168,7 +5167,7 @@ def _squared_bounds(node):
     for side, other in ((node.left, node.comparators[0]), (node.comparators[0], node.left)):
         bare = isinstance(other, (ast.Name, ast.Attribute, ast.Subscript, ast.Constant)) \
             or isinstance(other, ast.Call) and _dotted(other.func) in ("float", "int")
-        rooted = any(isinstance(n, ast.Call) and _dotted(n.func) in _ROOT_CALLS for n in ast.walk(side))
+        rooted = any(isinstance(n, ast.Call) and _dotted(n.func) in _ROOT_CALLS for n in walk(side))
         if bare and _squares(side) and not rooted:
             written = ast.unparse(ast.Compare(side, node.ops, [ast.BinOp(other, ast.Pow(), ast.Constant(2))])
                                   if side is node.left else
@@ -5224,12 +5223,12 @@ def _translation_scaled(node):
     plain = [unscaled(shift) for shift in shifts]
     if all(text is not None for text in plain):
         changed = plain
-    elif not any(scale in {n.id for n in ast.walk(shift) if isinstance(n, ast.Name)} for shift in shifts) \
+    elif not any(scale in {n.id for n in walk(shift) if isinstance(n, ast.Name)} for shift in shifts) \
             and scale.isidentifier():
         changed = [f"{scale} * {text}" if not text.startswith("-") else f"-{scale} * {text[1:]}" for text in texts]
     else:
         return
-    made = copy.deepcopy(node)
+    made = copy_tree(node)
     for row, text in zip(made.elts[:2], changed):
         row.elts[2] = parse(text, mode="eval").body
     yield "translation_scaled", ast.unparse(made), ""
@@ -5323,7 +5322,7 @@ def _denormalisations(fn):
     transforms are what one of the student's helpers returns for each image (`T1, T2 = _norm(p1),
     _norm(p2)`; `n1, T1 = _norm(p1)` and `n2, T2 = _norm(p2)`), the estimate the first name the return reads."""
     made = {}
-    for node in ast.walk(fn):
+    for node in walk(fn):
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1):
             continue
         target, value = node.targets[0], node.value
@@ -5340,9 +5339,9 @@ def _denormalisations(fn):
     if transforms is None:
         return
     first, second = transforms
-    for node in ast.walk(fn):
+    for node in walk(fn):
         if isinstance(node, ast.Return) and node.value is not None:
-            estimate = next((n for n in ast.walk(node.value) if isinstance(n, ast.Name) and n.id not in transforms
+            estimate = next((n for n in walk(node.value) if isinstance(n, ast.Name) and n.id not in transforms
                              and isinstance(n.ctx, ast.Load) and n.id not in ("np", "numpy", "cv2")), None)
             if estimate is None:
                 continue
@@ -5352,8 +5351,8 @@ def _denormalisations(fn):
             # (one side only, where the other is in more matrix products than it -- undone already: `P =
             # p.reshape(3, 4) @ U` returned without `inv(T)`, U also normalising the points as T does)
             products = {name: sum(isinstance(n, ast.BinOp) and isinstance(n.op, ast.MatMult) and any(
-                isinstance(m, ast.Name) and m.id == name for side in (n.left, n.right) for m in ast.walk(side))
-                for n in ast.walk(fn)) for name in transforms}
+                isinstance(m, ast.Name) and m.id == name for side in (n.left, n.right) for m in walk(side))
+                for n in walk(fn)) for name in transforms}
             for a, b in ((first, second), (second, first)):
                 if products[b] > products[a]:
                     for undone in (f"(np.linalg.inv({a}) @ {estimate.id})", f"({a}.T @ {estimate.id})",
@@ -5383,7 +5382,7 @@ def _missing_measure(node):
     argument = node.args[0]
     squares = any((isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and isinstance(n.right, ast.Constant)
                    and n.right.value == 2) or (isinstance(n, ast.Call) and _dotted(n.func) in ("np.square", "numpy.square"))
-                  for n in ast.walk(argument))
+                  for n in walk(argument))
     if squares:
         yield "measure", "sqrt", ""
     if isinstance(argument, ast.BinOp) and isinstance(argument.op, ast.Sub):
@@ -5481,7 +5480,7 @@ def _counted_loop_changes(loop: ast.For):
     """A loop over a fixed count where every item belongs (`for i in range(8)` over `p1[i]`: the
     eight-point algorithm given 40 points uses eight): the count becomes `len` of what it indexes."""
     indexed = []
-    for inner in ast.walk(loop):
+    for inner in walk(loop):
         if isinstance(inner, ast.Subscript) and isinstance(inner.value, ast.Name) and inner.value.id not in indexed:
             first = inner.slice.elts[0] if isinstance(inner.slice, ast.Tuple) and inner.slice.elts else inner.slice
             if isinstance(first, ast.Name) and first.id == loop.target.id:
@@ -5495,7 +5494,7 @@ def _twins(a, b) -> bool:
     `pts1[i]` and `pts2[i]`): what a student writes twice, once per coordinate or image."""
     if type(a) is not type(b) or not isinstance(a, _TERMS):
         return False
-    first, second = list(ast.walk(a)), list(ast.walk(b))
+    first, second = list(walk(a)), list(walk(b))
     if len(first) != len(second) or len(first) > 12:
         return False
     apart = 0
@@ -5540,12 +5539,12 @@ def _twin_steps(items):
         for i, stepped in enumerate(items):
             if i == j or isinstance(stepped, (*_TERMS, ast.Constant)):
                 continue
-            for inner in itertools.islice((n for n in ast.walk(stepped) if n is not stepped
+            for inner in itertools.islice((n for n in walk(stepped) if n is not stepped
                                            and (_twins(n, bare) or _index_twins(n, bare))), 3):
-                twin = copy.deepcopy(stepped)
-                for old, new in zip(ast.walk(stepped), ast.walk(twin)):
+                twin = copy_tree(stepped)
+                for old, new in zip(walk(stepped), walk(twin)):
                     if old is inner:
-                        replaced = _swap_in(twin, new, copy.deepcopy(bare))
+                        replaced = _swap_in(twin, new, copy_tree(bare))
                         break
                 text = ast.unparse(replaced)
                 if text not in made and len(text) <= 80:
@@ -5566,12 +5565,12 @@ def _moved_terms(node):
         if not (isinstance(offset, ast.BinOp) and isinstance(offset.op, (ast.Add, ast.Sub))
                 and not isinstance(offset.right, ast.Constant) and (_twins(offset.left, bare) or _index_twins(offset.left, bare))):
             continue
-        moved = copy.deepcopy(node)
-        for old, new in zip(ast.walk(node), ast.walk(moved)):
+        moved = copy_tree(node)
+        for old, new in zip(walk(node), walk(moved)):
             if old is bare:
-                _swap_in(moved, new, ast.BinOp(copy.deepcopy(bare), offset.op, copy.deepcopy(offset.right)))
+                _swap_in(moved, new, ast.BinOp(copy_tree(bare), offset.op, copy_tree(offset.right)))
             elif old is offset:
-                _swap_in(moved, new, copy.deepcopy(offset.left))
+                _swap_in(moved, new, copy_tree(offset.left))
         text = ast.unparse(moved)
         if text not in made and len(text) <= 120:
             made.append(text)
@@ -5607,7 +5606,7 @@ def _one_difference(a, b):
 
 def _swap_in(root, old, new):
     """``root`` with the node ``old`` (inside it) replaced by ``new``."""
-    for parent in ast.walk(root):
+    for parent in walk(root):
         for field, value in ast.iter_fields(parent):
             if value is old:
                 setattr(parent, field, new)
@@ -5621,7 +5620,7 @@ def _swap_in(root, old, new):
 def _twin_mapping(inner: ast.AST, bare: ast.AST) -> dict | None:
     """The names of ``inner`` to rename (each to its twin) to write ``bare``; None when no such renaming
     does (or none is needed: the two are alike)."""
-    first, second = list(ast.walk(inner)), list(ast.walk(bare))
+    first, second = list(walk(inner)), list(walk(bare))
     if len(first) != len(second) or len(first) > 16:
         return None
     names = {}
@@ -5646,7 +5645,7 @@ def _twin_argument_changes(node, words):
     renamed as the twins are (T1 -> T2) when the function has those names, and also kept as written."""
     if not isinstance(node, ast.Call) or not 2 <= len(node.args) <= 4 or any(isinstance(a, ast.Starred) for a in node.args):
         return
-    known = {n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name)}
+    known = {n.id for n in walk(words.fn) if isinstance(n, ast.Name)}
     for j, bare in enumerate(node.args):
         if isinstance(bare, ast.Constant):
             continue
@@ -5654,7 +5653,7 @@ def _twin_argument_changes(node, words):
         for i, stepped in enumerate(node.args):
             if i == j:
                 continue
-            for inner in ast.walk(stepped):
+            for inner in walk(stepped):
                 if inner is stepped or not isinstance(inner, (*_TERMS, ast.Call)):
                     continue
                 names = _twin_mapping(inner, bare)
@@ -5663,14 +5662,14 @@ def _twin_argument_changes(node, words):
                 # the step's other names renamed as the twins differ (`T1` -> `T2` beside `pts1` -> `pts2`)
                 differences = {_difference(a, b) for a, b in names.items()}
                 more = dict(names)
-                for other in {n.id for n in ast.walk(stepped) if isinstance(n, ast.Name)} - set(names):
+                for other in {n.id for n in walk(stepped) if isinstance(n, ast.Name)} - set(names):
                     more.update((other, twin) for twin in sorted(known)
                                 if twin != other and twin_names(other, twin) and _difference(other, twin) in differences)
                 for mapping in (more, names):
-                    step = copy.deepcopy(stepped)
-                    for old_node, new_node in zip(ast.walk(stepped), ast.walk(step)):
+                    step = copy_tree(stepped)
+                    for old_node, new_node in zip(walk(stepped), walk(step)):
                         if old_node is inner:
-                            step = _swap_in(step, new_node, copy.deepcopy(bare))
+                            step = _swap_in(step, new_node, copy_tree(bare))
                             break
                     for name in set(mapping) - set(names):   # (names the twins' renaming leaves: the step's own)
                         step = _renamed(step, name, mapping[name])
@@ -5698,12 +5697,12 @@ def _series_powers(node, parent):
         return
     bases = {}   # name -> the powers it is raised to in the sum
     bare = set()
-    for n in ast.walk(node):
+    for n in walk(node):
         if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and isinstance(n.left, ast.Name) \
                 and isinstance(n.right, ast.Constant) and type(n.right.value) is int and 1 <= n.right.value <= 8:
             bases.setdefault(n.left.id, set()).add(n.right.value)
             bare.add(id(n.left))
-    for n in ast.walk(node):
+    for n in walk(node):
         if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load) and id(n) not in bare and n.id in bases:
             bases[n.id].add(1)
     for name, powers in sorted(bases.items()):
@@ -5712,8 +5711,8 @@ def _series_powers(node, parent):
         for factor in (2, 0.5):
             if factor == 0.5 and any(p % 2 for p in powers):
                 continue
-            changed = copy.deepcopy(node)
-            for n in list(ast.walk(changed)):
+            changed = copy_tree(node)
+            for n in list(walk(changed)):
                 for field, child in ast.iter_fields(n):
                     if isinstance(child, ast.Name) and child.id == name and isinstance(child.ctx, ast.Load) \
                             and not (isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow) and field == "left"):
@@ -5767,24 +5766,24 @@ def _crossed_twins(node, words):
             or (isinstance(parent, ast.Assign) and parent.value is node)) \
             or not isinstance(node, (ast.BinOp, ast.Call, ast.UnaryOp)):
         return
-    read = list(dict.fromkeys(n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)))
+    read = list(dict.fromkeys(n.id for n in walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)))
     pairs = [(a, b) for i, a in enumerate(read) for b in read[i + 1:] if twin_names(a, b)]
     if len(pairs) != 1:
         return
     a, b = pairs[0]
     # (names in an index or a tuple -- `np.mgrid[0:rows, 0:cols]`, `(h, w)` -- are swap_items' to exchange,
     # shown as the smaller change)
-    inside = {id(n) for part in ast.walk(node) if isinstance(part, (ast.Slice, ast.Tuple, ast.List))
-              for n in ast.walk(part)}
-    if any(isinstance(n, ast.Name) and n.id in (a, b) and id(n) in inside for n in ast.walk(node)):
+    inside = {id(n) for part in walk(node) if isinstance(part, (ast.Slice, ast.Tuple, ast.List))
+              for n in walk(part)}
+    if any(isinstance(n, ast.Name) and n.id in (a, b) and id(n) in inside for n in walk(node)):
         return
     yield "crossed", _names_exchanged(node, a, b), ""
 
 
 def _names_exchanged(node, a: str, b: str) -> str:
     """``node``'s code with every name ``a`` read as ``b`` and the other way round."""
-    exchanged = copy.deepcopy(node)
-    for name in ast.walk(exchanged):
+    exchanged = copy_tree(node)
+    for name in walk(exchanged):
         if isinstance(name, ast.Name) and name.id in (a, b):
             name.id = b if name.id == a else a
     return ast.unparse(exchanged)
@@ -5819,7 +5818,7 @@ def _matrix_applied(node, words):
     for name, defs in words.definitions.items():
         made = [value for at, value, index in defs if at < line and index is None]
         if not made or not _matrix_made(made[-1]) or any(isinstance(n, ast.Name) and n.id == name
-                                                         for n in ast.walk(node)):
+                                                         for n in walk(node)):
             continue
         yield "matrix_applied", f"{ast.unparse(node.left)} - {name} @ {ast.unparse(node.right)}", ""
 
@@ -5871,8 +5870,8 @@ def _sibling_changes(node, words):
                 continue
             for position, text in _twin_steps(list(pair)):
                 if position == 0:
-                    whole = copy.deepcopy(node.value)
-                    for old, new in zip(ast.walk(node.value), ast.walk(whole)):
+                    whole = copy_tree(node.value)
+                    for old, new in zip(walk(node.value), walk(whole)):
                         if old is pair[0]:
                             whole = _swap_in(whole, new, _parse(text).body[0].value)
                             break
@@ -5895,7 +5894,7 @@ def _sibling_changes(node, words):
                 if other is None or isinstance(other, (*_TERMS, ast.Constant)):
                     continue
                 for _, text in _twin_steps([leading, other]):
-                    whole = copy.deepcopy(node.value)
+                    whole = copy_tree(node.value)
                     holder = whole
                     while isinstance(holder.left, ast.BinOp) and isinstance(holder.left.op, (ast.Add, ast.Sub)):
                         holder = holder.left
@@ -5904,7 +5903,7 @@ def _sibling_changes(node, words):
                     break
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
         name = node.targets[0].id
-        if any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(node.value)):
+        if any(isinstance(n, ast.Name) and n.id == name for n in walk(node.value)):
             # (its twin first, a parameter or a local -- `pts2` beside `pts1 = pts1[inliers]` -- then the
             # def's other parameters)
             twins = [other for other in words.definitions if twin_names(name, other)]
@@ -5937,11 +5936,11 @@ def _per_item_changes(node, words):
         return
     if not hasattr(words, "loop_reads"):   # (read once per def: names read in loops, the loops' assignments)
         words.loop_reads = {}
-        for loop in ast.walk(words.fn):
+        for loop in walk(words.fn):
             if isinstance(loop, ast.For):
-                made = [n for statement in loop.body for n in ast.walk(statement)
+                made = [n for statement in loop.body for n in walk(statement)
                         if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name)]
-                for n in ast.walk(loop):
+                for n in walk(loop):
                     if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load) and n.lineno > loop.lineno:
                         words.loop_reads[id(n)] = (loop, made[:8])
     if id(node) not in words.loop_reads:
@@ -5951,14 +5950,14 @@ def _per_item_changes(node, words):
     if len(defs) != 1 or defs[0][0] >= loop.lineno or defs[0][2] is not None:
         return
     value = defs[0][1]
-    for once in {n.id for n in ast.walk(value) if isinstance(n, ast.Name)}:
+    for once in {n.id for n in walk(value) if isinstance(n, ast.Name)}:
         first = words.definitions.get(once, ())
         if len(first) != 1 or first[0][0] >= loop.lineno or first[0][2] is not None:
             continue
         for assigned in made:   # the loop's own value written alike (`line = F @ np.array([x, y, 1.0])`)
             if assigned.lineno < node.lineno and assigned.targets[0].id != once \
                     and not isinstance(first[0][1], _TERMS) and _masked(first[0][1]) == _masked(assigned.value):
-                text = ast.unparse(_renamed(copy.deepcopy(value), once, assigned.targets[0].id))
+                text = ast.unparse(_renamed(copy_tree(value), once, assigned.targets[0].id))
                 if len(text) <= 80:
                     yield "per_item", f"({text})", ""
                 break
@@ -5978,11 +5977,11 @@ def _grid_axis_changes(node):
     whole = lambda item: isinstance(item, ast.Slice) and item.lower is item.upper is item.step is None  # noqa: E731
     if not ((whole(first) and none(second)) or (none(first) and whole(second))):
         return
-    sizes = [n for n in ast.walk(node.value) if isinstance(n, ast.Name) and n.id in _GRID_AXES]
+    sizes = [n for n in walk(node.value) if isinstance(n, ast.Name) and n.id in _GRID_AXES]
     if len(sizes) != 1:
         return
     other = _renamed(node.value, sizes[0].id, _GRID_AXES[sizes[0].id])
-    flipped = ast.Subscript(other, ast.Tuple([copy.deepcopy(second), copy.deepcopy(first)], ast.Load()), ast.Load())
+    flipped = ast.Subscript(other, ast.Tuple([copy_tree(second), copy_tree(first)], ast.Load()), ast.Load())
     yield "grid_axis", ast.unparse(flipped), ""
 
 
@@ -5993,7 +5992,7 @@ def _mirror_changes(node, words):
     written at every place of this one but one: that place, as the twin's line has it."""
     mine, theirs = ast.unparse(node.targets[0]), None
     if not hasattr(words, "names_anywhere"):   # (read once per def)
-        words.names_anywhere = {n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name)}
+        words.names_anywhere = {n.id for n in walk(words.fn) if isinstance(n, ast.Name)}
     names = words.names_anywhere
     for twin in _twin_assignments(node, words):
         other = ast.unparse(twin.targets[0])
@@ -6003,17 +6002,17 @@ def _mirror_changes(node, words):
         if len(apart) != 1:
             continue
         old, new = apart[0]
-        turned = copy.deepcopy(twin.value)
-        for inner in ast.walk(turned):   # (a name with the twin's letter that has a partner in the def)
+        turned = copy_tree(twin.value)
+        for inner in walk(turned):   # (a name with the twin's letter that has a partner in the def)
             if isinstance(inner, ast.Name) and old in inner.id and inner.id.replace(old, new) in names:
                 inner.id = inner.id.replace(old, new)
         pair = _one_difference(node.value, turned)
         if pair is None or pair[0] is node.value or ast.dump(turned) == ast.dump(twin.value):
             continue   # (alike, or alike nowhere: no line copied from the other)
-        whole = copy.deepcopy(node.value)
-        for before, after in zip(ast.walk(node.value), ast.walk(whole)):
+        whole = copy_tree(node.value)
+        for before, after in zip(walk(node.value), walk(whole)):
             if before is pair[0]:
-                whole = _swap_in(whole, after, copy.deepcopy(pair[1]))
+                whole = _swap_in(whole, after, copy_tree(pair[1]))
                 break
         theirs = ast.unparse(whole)
         if len(theirs) <= 200:
@@ -6037,7 +6036,7 @@ def _summed_terms(node) -> list | None:
 
 def _rows_read(terms) -> set:
     """The (matrix, row) of every constant-row subscript the terms read (`P[1, 3]`: ("P", 1))."""
-    return {_row_index(n) for _, term in terms for n in ast.walk(term) if _row_index(n)}
+    return {_row_index(n) for _, term in terms for n in walk(term) if _row_index(n)}
 
 
 def _term_its_siblings_have(node, words):
@@ -6067,8 +6066,8 @@ def _term_its_siblings_have(node, words):
         other = next(iter(their_rows))[1]
         moved = []
         for sign, term in theirs:
-            term = copy.deepcopy(term)
-            for n in ast.walk(term):
+            term = copy_tree(term)
+            for n in walk(term):
                 if _row_index(n) == (matrix, other):
                     first = n.slice.elts[0] if isinstance(n.slice, ast.Tuple) else None
                     if first is not None:
@@ -6096,8 +6095,8 @@ def _term_its_siblings_have(node, words):
         yield "mirror", (None, f"({grown}) / {ast.unparse(node.value.right)}" if divided else grown), ""
     if len(factored) == 1:
         bare, times = factored.pop()
-        value = copy.deepcopy(node.value)
-        for n in ast.walk(value):   # (the bare term, found again in the copy)
+        value = copy_tree(node.value)
+        for n in walk(value):   # (the bare term, found again in the copy)
             for field in ("left", "right"):
                 part = getattr(n, field, None)
                 if isinstance(part, ast.AST) and ast.unparse(part) == bare:
@@ -6105,8 +6104,8 @@ def _term_its_siblings_have(node, words):
         yield "mirror", (None, ast.unparse(value)), ""
     if len(in_place) == 1:
         sign, term = in_place.pop()
-        value = copy.deepcopy(node.value)
-        for n in ast.walk(value):   # (the one constant term of the sum, found again in the copy)
+        value = copy_tree(node.value)
+        for n in walk(value):   # (the one constant term of the sum, found again in the copy)
             for field in ("left", "right"):
                 part = getattr(n, field, None)
                 if isinstance(part, ast.Constant) and ast.unparse(part) == ast.unparse(constants[0]):
@@ -6139,7 +6138,7 @@ def _row_products(words) -> dict:
     value is a whole row of it times something (`u = Xh @ P[0]`), read once per def."""
     if not hasattr(words, "row_products"):
         found = {}
-        for statement in ast.walk(words.fn):
+        for statement in walk(words.fn):
             value = statement.value if isinstance(statement, ast.Assign) and len(statement.targets) == 1 else None
             if isinstance(value, ast.BinOp) and isinstance(value.op, ast.MatMult):
                 for row, other, left in ((value.right, value.left, True), (value.left, value.right, False)):
@@ -6158,7 +6157,7 @@ def _row_like_its_siblings(node, words):
     if not products:
         return
     value = node.value
-    rows = [_row_index(n) for n in ast.walk(value) if _row_index(n)]
+    rows = [_row_index(n) for n in walk(value) if _row_index(n)]
     if not rows or len({matrix for matrix, _ in rows}) != 1 or rows[0][0] not in products:
         return
     matrix, row = rows[0]
@@ -6173,15 +6172,15 @@ def _derived_values(words) -> dict:
     `b = <arithmetic reading a>` (`yn = Y / Z`), read once per def."""
     if not hasattr(words, "derived_values"):
         derived = {}
-        for statement in ast.walk(words.fn):
+        for statement in walk(words.fn):
             if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1
                     and isinstance(statement.targets[0], ast.Name) and isinstance(statement.value, ast.BinOp)):
                 continue
             target = statement.targets[0].id
-            read = {n.id for n in ast.walk(statement.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+            read = {n.id for n in walk(statement.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
             for name in read - {target}:
-                form = copy.deepcopy(statement.value)
-                for inner in ast.walk(form):
+                form = copy_tree(statement.value)
+                for inner in walk(form):
                     if isinstance(inner, ast.Name) and inner.id == name:
                         inner.id = "_raw_"
                 derived.setdefault(name, []).append((target, ast.dump(form), statement.lineno))
@@ -6202,7 +6201,7 @@ def _raw_beside_derived(node, words):
     statement = node
     while _parent_of(statement, words) is not None and not isinstance(statement, ast.stmt):
         statement = _parent_of(statement, words)
-    beside = {n.id for n in ast.walk(statement) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    beside = {n.id for n in walk(statement) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
     forms_beside = {form for raw, made in derived.items() if raw != node.id
                     for name, form, _ in made if name in beside}
     for name, form in mine:
@@ -6223,8 +6222,8 @@ def _started_with_an_item(node, words):
         return
     if not hasattr(words, "appended_in_loops"):   # (read once per def: (loop's line, list appended to))
         words.appended_in_loops = {(loop.lineno, c.func.value.id)
-                                   for loop in ast.walk(words.fn) if isinstance(loop, (ast.For, ast.While))
-                                   for statement in loop.body for c in ast.walk(statement)
+                                   for loop in walk(words.fn) if isinstance(loop, (ast.For, ast.While))
+                                   for statement in loop.body for c in walk(statement)
                                    if isinstance(c, ast.Call) and isinstance(c.func, ast.Attribute)
                                    and c.func.attr in ("append", "extend") and isinstance(c.func.value, ast.Name) and c.args}
     name = parent.targets[0].id
@@ -6241,11 +6240,11 @@ def _out_buffer_changes(node, words):
     if not copied:
         return
     if not hasattr(words, "masked_outputs"):   # (read once per def: the names given as out= beside a where=)
-        words.masked_outputs = {k.value.id for c in ast.walk(words.fn) if isinstance(c, ast.Call)
+        words.masked_outputs = {k.value.id for c in walk(words.fn) if isinstance(c, ast.Call)
                                 and any(k.arg == "where" for k in c.keywords)
                                 for k in c.keywords if k.arg == "out" and isinstance(k.value, ast.Name)}
         words.allocated_into = getattr(words, "allocated_into", None) or {
-            id(a.value): a.targets[0].id for a in ast.walk(words.fn) if isinstance(a, ast.Assign)
+            id(a.value): a.targets[0].id for a in walk(words.fn) if isinstance(a, ast.Assign)
             and len(a.targets) == 1 and isinstance(a.targets[0], ast.Name)}
     if words.allocated_into.get(id(node)) in words.masked_outputs:
         data = node.func.value if isinstance(node.func, ast.Attribute) else node.args[0] if node.args else None
@@ -6259,10 +6258,10 @@ def _initial_changes(node, words):
     if not (isinstance(node, ast.Call) and node.args and _dotted(node.func) in ("np.zeros", "np.zeros_like")):
         return
     if not hasattr(words, "compared_names"):   # (read once per def: the names a comparison reads)
-        words.compared_names = {n.id for c in ast.walk(words.fn) if isinstance(c, ast.Compare)
+        words.compared_names = {n.id for c in walk(words.fn) if isinstance(c, ast.Compare)
                                 and any(isinstance(op, (ast.Lt, ast.LtE, ast.Gt, ast.GtE)) for op in c.ops)
-                                for side in [c.left, *c.comparators] for n in ast.walk(side) if isinstance(n, ast.Name)}
-        words.allocated_into = {id(a.value): a.targets[0].id for a in ast.walk(words.fn) if isinstance(a, ast.Assign)
+                                for side in [c.left, *c.comparators] for n in walk(side) if isinstance(n, ast.Name)}
+        words.allocated_into = {id(a.value): a.targets[0].id for a in walk(words.fn) if isinstance(a, ast.Assign)
                                 and len(a.targets) == 1 and isinstance(a.targets[0], ast.Name)}
     if words.allocated_into.get(id(node)) not in words.compared_names:
         return
@@ -6301,18 +6300,18 @@ def _layout_and_type_changes(node):
             and isinstance(node.args[1].op, ast.Add) and isinstance(node.args[1].right, ast.Constant) \
             and node.args[1].right.value == 1:
         # positions counted from 1 (`np.arange(1, width + 1)`) where they are indices, from 0
-        counted = ast.Call(copy.deepcopy(node.func), [copy.deepcopy(node.args[1].left)], copy.deepcopy(node.keywords))
+        counted = ast.Call(copy_tree(node.func), [copy_tree(node.args[1].left)], copy_tree(node.keywords))
         yield "zero_based", ast.unparse(counted), ""
     if isinstance(node, ast.Call) and _dotted(node.func) == "enumerate" and node.args \
             and (len(node.args) == 2 or any(k.arg == "start" for k in node.keywords)):
         # items numbered from another start (`enumerate(frames, start=1)`) where their index belongs, from 0
-        counted = ast.Call(copy.deepcopy(node.func), [copy.deepcopy(node.args[0])],
-                           [copy.deepcopy(k) for k in node.keywords if k.arg != "start"])
+        counted = ast.Call(copy_tree(node.func), [copy_tree(node.args[0])],
+                           [copy_tree(k) for k in node.keywords if k.arg != "start"])
         yield "zero_based", ast.unparse(counted), ""
     if isinstance(node, ast.Subscript) and _dotted(node.value) in ("np.mgrid", "np.ogrid", "numpy.mgrid", "numpy.ogrid"):
-        counted = copy.deepcopy(node)   # np.mgrid[1:cols + 1, 1:rows + 1] -> np.mgrid[0:cols, 0:rows]
+        counted = copy_tree(node)   # np.mgrid[1:cols + 1, 1:rows + 1] -> np.mgrid[0:cols, 0:rows]
         changed = False
-        for part in ast.walk(counted.slice):
+        for part in walk(counted.slice):
             if isinstance(part, ast.Slice) and isinstance(part.lower, ast.Constant) and part.lower.value == 1 \
                     and isinstance(part.upper, ast.BinOp) and isinstance(part.upper.op, ast.Add) \
                     and isinstance(part.upper.right, ast.Constant) and part.upper.right.value == 1:
@@ -6336,7 +6335,7 @@ def _layout_and_type_changes(node):
 def _parent_of(node, words):
     """``node``'s parent in the def ``words`` reads (kept per def)."""
     if not hasattr(words, "parents"):
-        words.parents = {id(child): parent for parent in ast.walk(words.fn) for child in ast.iter_child_nodes(parent)}
+        words.parents = {id(child): parent for parent in walk(words.fn) for child in ast.iter_child_nodes(parent)}
     return words.parents.get(id(node))
 
 
@@ -6344,7 +6343,7 @@ def _unused_parameter_changes(node, parent, words):
     """A parameter the def never reads, where an operand of a sum, difference or product is computed
     otherwise: that operand is likely where it belongs (`d - X[:, 2].mean()` with `z0` unread)."""
     if not hasattr(words, "unread"):
-        read = {n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+        read = {n.id for n in walk(words.fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
         args = words.fn.args
         words.unread = [a.arg for a in args.args + args.kwonlyargs if a.arg not in read and a.arg not in ("self", "_")]
     if not words.unread or not (isinstance(parent, ast.BinOp) and isinstance(parent.op, (ast.Add, ast.Sub, ast.Mult, ast.Div))):
@@ -6369,24 +6368,24 @@ def _masked(node) -> str:
                 return ast.Name("_", ast.Load())
             return super().generic_visit(inner)
 
-    return ast.dump(Mask().visit(copy.deepcopy(node)))
+    return ast.dump(Mask().visit(copy_tree(node)))
 
 
 def _canvas_changes(node, words):
     """A canvas sized by one image where both belong: `np.zeros((h1, w1 + w2, 3))` with `max(h1, h2)`
     rows, or `w1` columns where `w1 + w2` belong (the names' twins: `h1`/`h2`, `w_a`/`w_b`)."""
     if not hasattr(words, "canvas_sizes"):   # (read once per def: the sizes of allocated shapes)
-        words.canvas_sizes = {id(size) for call in ast.walk(words.fn) if isinstance(call, ast.Call) and call.args
+        words.canvas_sizes = {id(size) for call in walk(words.fn) if isinstance(call, ast.Call) and call.args
                               and isinstance(call.args[0], ast.Tuple)
                               and _dotted(call.func).rsplit(".", 1)[-1] in _ALLOCATED
                               for size in call.args[0].elts}
-        words.names_read = sorted({n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name)})
+        words.names_read = sorted({n.id for n in walk(words.fn) if isinstance(n, ast.Name)})
     if id(node) not in words.canvas_sizes:
         return
     if not isinstance(node, ast.Name):
         # a size made from both images' in another way (`2 * max(w1, w2)` where `w1 + w2` belongs)
-        called = {id(n.func) for n in ast.walk(node) if isinstance(n, ast.Call)}
-        read = list(dict.fromkeys(n.id for n in ast.walk(node) if isinstance(n, ast.Name) and id(n) not in called))
+        called = {id(n.func) for n in walk(node) if isinstance(n, ast.Call)}
+        read = list(dict.fromkeys(n.id for n in walk(node) if isinstance(n, ast.Name) and id(n) not in called))
         if len(read) == 2 and _twins(ast.Name(read[0]), ast.Name(read[1])):
             for text in (f"{read[0]} + {read[1]}", f"max({read[0]}, {read[1]})"):
                 if ast.dump(_parse(text).body[0].value) != ast.dump(node):
@@ -6417,7 +6416,7 @@ def _unit_vectors(words) -> dict:
     norm's function, read once per def."""
     if not hasattr(words, "unit_vectors"):
         units = {}
-        for statement in ast.walk(words.fn):
+        for statement in walk(words.fn):
             if isinstance(statement, ast.Assign) and len(statement.targets) == 1 \
                     and isinstance(statement.targets[0], ast.Name) and isinstance(statement.value, ast.BinOp) \
                     and isinstance(statement.value.op, ast.Div) and _norm_call(statement.value.right):
@@ -6436,7 +6435,7 @@ def _twin_unit_changes(node, words):
     if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
         return
     name, units = node.targets[0].id, _unit_vectors(words)
-    if name in units or any(_norm_call(n) for n in ast.walk(node.value)):
+    if name in units or any(_norm_call(n) for n in walk(node.value)):
         return
     norms = [units[other] for other in units if twin_names(name, other)]
     if not norms:
@@ -6467,8 +6466,8 @@ def _as_its_twin_line(node, words):
         # (the twin's names read in this line's terms: those aligned elsewhere in the two lines, else the
         # twin's name with this line's target's difference -- `mean_l` -> `mean_r` beside `std_l`, `std_r`)
         here, there = node.targets[0].id, twin.targets[0].id
-        part = copy.deepcopy(theirs)
-        for name in ast.walk(part):
+        part = copy_tree(theirs)
+        for name in walk(part):
             if isinstance(name, ast.Name):
                 if name.id in renames:
                     name.id = renames[name.id]
@@ -6476,8 +6475,8 @@ def _as_its_twin_line(node, words):
                     renamed = _renamed_as(name.id, there, here)
                     if renamed is not None and renamed in words.definitions:
                         name.id = renamed
-        whole = copy.deepcopy(node.value)
-        for old, new in zip(ast.walk(node.value), ast.walk(whole)):
+        whole = copy_tree(node.value)
+        for old, new in zip(walk(node.value), walk(whole)):
             if old is mine:
                 whole = _swap_in(whole, new, part) if new is not whole else part
                 break
@@ -6556,7 +6555,7 @@ def _read_siblings(words):
     on ``words``): comparing every node with every other would grow with the square of the code."""
     if not hasattr(words, "siblings"):
         done, calls, named = set(), {}, []
-        for statement in ast.walk(words.fn):
+        for statement in walk(words.fn):
             if isinstance(statement, ast.Assign):
                 done.add(ast.dump(statement))
                 if len(statement.targets) == 1 and isinstance(statement.targets[0], _TERMS) and len(named) < 64:
@@ -6571,8 +6570,8 @@ def _read_siblings(words):
 
 def _renamed(node, old: str, new: str):
     """A copy of ``node`` with every name ``old`` read or written as ``new``."""
-    copied = copy.deepcopy(node)
-    for inner in ast.walk(copied):
+    copied = copy_tree(node)
+    for inner in walk(copied):
         if isinstance(inner, ast.Name) and inner.id == old:
             inner.id = new
     return copied
@@ -6876,7 +6875,7 @@ def _stored_names(fn) -> set:
     cached = getattr(fn, "_stored_names", None)
     if cached is None:
         cached = set()
-        for node in ast.walk(fn):
+        for node in walk(fn):
             if isinstance(node, ast.Assign) and isinstance(node.value, ast.Name) \
                     and any(isinstance(target, ast.Subscript) for target in node.targets):
                 cached.add(node.value.id)
@@ -6906,7 +6905,7 @@ def _place(node, parents, words: _Words, line) -> str:
                 argument = f"the {_ORDINALS[which]} argument" if which is not None and which < 6 else "the arguments"
                 if which is not None and isinstance(child, (ast.List, ast.Tuple)) and item is not None and item < 6:
                     argument = f"the {_ORDINALS[item]} item of {argument}"
-                same = [n for n in ast.walk(words.fn) if isinstance(n, ast.Call) and _dotted(n.func) == dotted]
+                same = [n for n in walk(words.fn) if isinstance(n, ast.Call) and _dotted(n.func) == dotted]
                 call = f"the {_ORDINALS[same.index(holder)]} `{dotted}`" if 1 < len(same) <= 6 else f"`{dotted}`"
                 return f"in {argument} of {call}"
         if isinstance(holder, ast.Return):
@@ -7100,7 +7099,7 @@ def _image_parameters(fn) -> list[str]:
     """The parameters of ``fn`` that are images: one whose shape it reads, or named as an image is (once per
     def: each of its size tuples asks, and a walk per tuple would be quadratic in the def)."""
     if not hasattr(fn, "_image_parameters"):
-        shaped = {n.value.id for n in ast.walk(fn) if isinstance(n, ast.Attribute) and n.attr == "shape"
+        shaped = {n.value.id for n in walk(fn) if isinstance(n, ast.Attribute) and n.attr == "shape"
                   and isinstance(n.value, ast.Name)}
         fn._image_parameters = [a.arg for a in fn.args.args if a.arg in shaped or _IMAGE_NAMES.match(a.arg)]
     return fn._image_parameters
@@ -7435,11 +7434,11 @@ def unpacked_items(fn) -> list[set]:
     """The sets of names a loop's item is unpacked into by an assignment in the loop (`for pair in
     matches:` then `m, n = pair`): the parts of one item, as a loop's own tuple target makes them."""
     items = set()
-    for loop in ast.walk(fn):
+    for loop in walk(fn):
         if isinstance(loop, (ast.For, ast.comprehension)):
-            items |= {n.id for n in ast.walk(loop.target) if isinstance(n, ast.Name)}
+            items |= {n.id for n in walk(loop.target) if isinstance(n, ast.Name)}
     found = []
-    for node in ast.walk(fn):
+    for node in walk(fn):
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Tuple) \
                 and isinstance(node.value, ast.Name) and node.value.id in items:
             names = {n.id for n in node.targets[0].elts if isinstance(n, ast.Name)}
@@ -7519,7 +7518,7 @@ def _made_from_since(words: _Words, other: str, name: str, line: int) -> bool:
     given = [at for at, _, _ in words.definitions.get(name, ()) if at < line]
     last = [d for d in words.definitions.get(other, ()) if d[0] < line]
     return bool(given and last) and last[-1][0] > given[-1] \
-        and any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(last[-1][1]))
+        and any(isinstance(n, ast.Name) and n.id == name for n in walk(last[-1][1]))
 
 
 def _name_changes(node: ast.Name, words: _Words, what, line):
@@ -7545,7 +7544,7 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
         # (and a local assigned above and never read anywhere: `n1, T1 = normalise(p1)` with the rows built
         # from p1 -- the value made for this use, left out of it)
         if not hasattr(words, "unread_locals"):
-            loaded = {n.id for n in ast.walk(words.fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+            loaded = {n.id for n in walk(words.fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
             words.unread_locals = {name for name in words.definitions if name not in loaded and not name.startswith("_")}
         unread |= {name for name in words.unread_locals if name != node.id
                    and any(at < line for at, _, _ in words.definitions[name])}
@@ -7628,7 +7627,7 @@ def _line_name_changes(node: ast.Assign, words: _Words, line):
     @ T1[:2, :2].T + T1[:2, 2]`` under ``src_n = src @ T1...``): each local read twice or more in
     the value, replaced throughout by a name unpacked with it (``T1, T2 = ...``)."""
     counts = {}
-    for name in ast.walk(node.value):
+    for name in walk(node.value):
         if isinstance(name, ast.Name) and isinstance(name.ctx, ast.Load):
             counts[name.id] = counts.get(name.id, 0) + 1
     for name, count in sorted(counts.items()):

@@ -24,7 +24,6 @@ naming (:data:`.naming.GRADING_SECONDS`).
 from __future__ import annotations
 
 import ast
-import copy
 import difflib
 import functools
 import hashlib
@@ -38,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...loading.parsing import parse
+from ...loading.parsing import copy_tree, parse, walk
 from ...loading.reading import MAX_SOURCE_BYTES
 from ...sandbox.supervisor import array_bytes
 from ..checks import Trial, Verdict, fingerprint
@@ -215,20 +214,20 @@ def _live(fn) -> set[str]:
     return, a condition, or the value of an assignment to a live name reads it; a method call on a
     live name, `rows.append(...)`, reads its arguments into it)."""
     live: set[str] = set()
-    reads = lambda node: {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}  # noqa: E731
+    reads = lambda node: {n.id for n in walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}  # noqa: E731
     flows = []   # (the names a statement sets, the names it reads)
-    for node in ast.walk(fn):
+    for node in walk(fn):
         if isinstance(node, ast.Return) and node.value is not None:
             live |= reads(node.value)
         elif isinstance(node, (ast.If, ast.While)):
             live |= reads(node.test)
         elif isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign)) and node.value is not None:
             targets = node.targets if isinstance(node, ast.Assign) else [node.target]
-            flows.append(({n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)},
-                          reads(node.value) | {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)
+            flows.append(({n.id for t in targets for n in walk(t) if isinstance(n, ast.Name)},
+                          reads(node.value) | {n.id for t in targets for n in walk(t) if isinstance(n, ast.Name)
                                                and isinstance(n.ctx, ast.Load)}))
         elif isinstance(node, ast.For):
-            flows.append(({n.id for n in ast.walk(node.target) if isinstance(n, ast.Name)}, reads(node.iter)))
+            flows.append(({n.id for n in walk(node.target) if isinstance(n, ast.Name)}, reads(node.iter)))
         elif isinstance(node, ast.Expr) and isinstance(node.value, ast.Call) \
                 and isinstance(node.value.func, ast.Attribute) and isinstance(node.value.func.value, ast.Name):
             flows.append(({node.value.func.value.id}, reads(node.value)))
@@ -245,16 +244,16 @@ def _live(fn) -> set[str]:
 def _left_out(fn) -> tuple[set, set]:
     """The names whose values ``fn`` computes and never uses (`x_norm = T @ ...`, no read of x_norm),
     and the names and helpers those values read (T, _normalising_transform through `T = ...(x)`)."""
-    loaded = {n.id for n in ast.walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
-    assignments = [node for node in ast.walk(fn) if isinstance(node, ast.Assign) and len(node.targets) == 1
+    loaded = {n.id for n in walk(fn) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+    assignments = [node for node in walk(fn) if isinstance(node, ast.Assign) and len(node.targets) == 1
                    and isinstance(node.targets[0], ast.Name)]
     left = {a.targets[0].id for a in assignments if a.targets[0].id not in loaded and not isinstance(a.value, ast.Constant)
             and not a.targets[0].id.startswith("_")}
     feeding = {n.id for a in assignments if a.targets[0].id in left
-               for n in ast.walk(a.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+               for n in walk(a.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
     # A step made of one call's results unpacked (`n1, T1 = normalise(p1)`): the unused result is left out,
     # its siblings are the same step's (T1 is n1's transform: dropping T1 downstream works round n1 unused).
-    for a in ast.walk(fn):
+    for a in walk(fn):
         if isinstance(a, ast.Assign) and len(a.targets) == 1 and isinstance(a.targets[0], (ast.Tuple, ast.List)) \
                 and all(isinstance(e, ast.Name) for e in a.targets[0].elts) and isinstance(a.value, ast.Call):
             names = [e.id for e in a.targets[0].elts]
@@ -262,21 +261,21 @@ def _left_out(fn) -> tuple[set, set]:
             if unused and len(unused) < len(names):
                 left |= unused
                 feeding |= set(names) - unused
-                feeding |= {n.id for n in ast.walk(a.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+                feeding |= {n.id for n in walk(a.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
     helpers = {_dotted_call(c) for a in assignments if a.targets[0].id in feeding | left
-               for c in ast.walk(a.value) if isinstance(c, ast.Call)}
+               for c in walk(a.value) if isinstance(c, ast.Call)}
     return left, feeding | helpers
 
 
 def _own_results(fn, own: frozenset) -> set[str]:
     """The names ``fn`` assigns from a call of the student's own defs (the module's, or one nested in
     ``fn``): `U = _normalising_transform(X)`, `T1, T2 = conditioner(a), conditioner(b)`."""
-    own = own | {n.name for n in ast.walk(fn) if isinstance(n, ast.FunctionDef) and n is not fn}
+    own = own | {n.name for n in walk(fn) if isinstance(n, ast.FunctionDef) and n is not fn}
     results = set()
-    for node in ast.walk(fn):
+    for node in walk(fn):
         if isinstance(node, ast.Assign) and any(isinstance(c, ast.Call) and isinstance(c.func, ast.Name)
-                                                and c.func.id in own for c in ast.walk(node.value)):
-            results |= {n.id for t in node.targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+                                                and c.func.id in own for c in walk(node.value)):
+            results |= {n.id for t in node.targets for n in walk(t) if isinstance(n, ast.Name)}
     return results
 
 
@@ -303,11 +302,11 @@ def _disconnects(before, after, helpers_changed=frozenset(), own=frozenset()) ->
     left, feeding = _left_out(before)
     if not left:
         return False
-    if left & {n.id for n in ast.walk(after) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}:
+    if left & {n.id for n in walk(after) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}:
         return False   # (the change puts the value to use: the step taken up)
     if feeding & set(helpers_changed):
         return True
-    assigned = {n.id for n in ast.walk(before) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    assigned = {n.id for n in walk(before) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
     return bool((feeding & assigned & _live(before)) - _live(after))
 
 
@@ -397,7 +396,7 @@ def _reverses(b, a) -> bool:
 def _opencv_reader(fn, reads) -> str:
     """What the first OpenCV call of ``fn`` given an argument ``reads`` accepts reads it as: a board's pattern
     or a size, said in its own order; "" where no such call reads it."""
-    for call in (n for n in ast.walk(fn) if isinstance(n, ast.Call)):
+    for call in (n for n in walk(fn) if isinstance(n, ast.Call)):
         name = ast.unparse(call.func).rsplit(".", 1)[-1]
         if not any(reads(arg) for arg in list(call.args) + [k.value for k in call.keywords]):
             continue
@@ -423,7 +422,7 @@ def _changed_subscripts(before: str, after: str) -> tuple | None:
     `pts[:, 2]` of `np.mean(pts[2])` and `np.mean(pts[:, 2])`); None when not exactly one each."""
     def subscripts(text) -> set:
         tree = _parsed(text, ("eval", "exec"))   # (an expression, or a statement: `h = Vt[:, -1]`)
-        return set() if tree is None else {ast.unparse(n) for n in ast.walk(tree) if isinstance(n, ast.Subscript)}
+        return set() if tree is None else {ast.unparse(n) for n in walk(tree) if isinstance(n, ast.Subscript)}
     gone, made = subscripts(before), subscripts(after)
     gone, made = gone - made, made - gone
     return (gone.pop(), made.pop()) if len(gone) == len(made) == 1 else None
@@ -441,7 +440,7 @@ def _svd_output(text: str, fn) -> str:
     if isinstance(node, ast.Subscript) and svd_call(node.value) and isinstance(node.slice, ast.Constant):
         return {2: "Vt", 0: "U"}.get(node.slice.value, "")
     if isinstance(node, ast.Name):
-        for assign in (n for n in ast.walk(fn) if isinstance(n, ast.Assign) and svd_call(n.value)):
+        for assign in (n for n in walk(fn) if isinstance(n, ast.Assign) and svd_call(n.value)):
             target = assign.targets[0]
             if isinstance(target, ast.Tuple) and len(target.elts) == 3:
                 names = [e.id if isinstance(e, ast.Name) else None for e in target.elts]
@@ -461,7 +460,7 @@ def _makes_float(text: str, defs: dict) -> bool:
         return False
 
     def converts(node) -> bool:
-        for call in (n for n in ast.walk(node) if isinstance(n, ast.Call)):
+        for call in (n for n in walk(node) if isinstance(n, ast.Call)):
             name = ast.unparse(call.func)
             if name in _FLOAT_MAKERS:   # (np.float32(image): a call of the type itself)
                 return True
@@ -473,9 +472,9 @@ def _makes_float(text: str, defs: dict) -> bool:
 
     if converts(statement):
         return True
-    called = {ast.unparse(n.func) for n in ast.walk(statement) if isinstance(n, ast.Call)}
+    called = {ast.unparse(n.func) for n in walk(statement) if isinstance(n, ast.Call)}
     return any(converts(r.value) for name in called if name in defs
-               for r in ast.walk(defs[name]) if isinstance(r, ast.Return) and r.value is not None)
+               for r in walk(defs[name]) if isinstance(r, ast.Return) and r.value is not None)
 
 
 class _Student:
@@ -525,7 +524,7 @@ class _Student:
 
     def readable(self, function: str) -> bool:
         """Whether every def ``function`` runs is within :data:`MAX_DEF_NODES` (changes of it are read in time)."""
-        return all(sum(1 for _ in ast.walk(self._defs[name])) <= MAX_DEF_NODES for name in runs(self._defs, function))
+        return all(sum(1 for _ in walk(self._defs[name])) <= MAX_DEF_NODES for name in runs(self._defs, function))
 
     def shared(self, where: str, function: str) -> bool:
         """Whether the def ``where`` (not ``function`` itself) is run by another graded function too."""
@@ -629,7 +628,7 @@ class _Student:
         steps = []
         for where in {place[0] for place in novel}:
             fn = self._defs.get(where)
-            blocks = [getattr(node, field) for node in ast.walk(fn) if fn is not None
+            blocks = [getattr(node, field) for node in walk(fn) if fn is not None
                       for field in ("body", "orelse") if isinstance(getattr(node, field, None), list)]
             for block in blocks:
                 for first, second in zip(block, block[1:]):
@@ -657,10 +656,10 @@ class _Student:
         nodes, _ = self._walk(where)
         block = nodes[ordinal] if 0 <= ordinal < len(nodes) else None
         # (an early return or raise makes the block a special case, a path of its own: a change inside it mends it)
-        if not isinstance(block, ast.If) or any(isinstance(node, (ast.Return, ast.Raise)) for node in ast.walk(block)):
+        if not isinstance(block, ast.If) or any(isinstance(node, (ast.Return, ast.Raise)) for node in walk(block)):
             return False
         written = set().union(*_reference_texts(self.reference_source).values())
-        simple = lambda root: [node for node in ast.walk(root) if isinstance(node, (ast.Assign, ast.AugAssign, ast.Return))  # noqa: E731
+        simple = lambda root: [node for node in walk(root) if isinstance(node, (ast.Assign, ast.AugAssign, ast.Return))  # noqa: E731
                                or isinstance(node, ast.Expr) and not isinstance(node.value, ast.Constant)]
         inside = simple(block)
         lines = {node.lineno for node in inside}
@@ -708,7 +707,7 @@ class _Student:
         fn = self._defs.get(where)
 
         def assignments(def_) -> int:
-            return sum(1 for node in ast.walk(def_) if isinstance(node, (ast.Assign, ast.AugAssign))
+            return sum(1 for node in walk(def_) if isinstance(node, (ast.Assign, ast.AugAssign))
                        and any(isinstance(t, ast.Name) and t.id == name
                                for t in (node.targets if isinstance(node, ast.Assign) else [node.target])))
         return reference is not None and fn is not None and assignments(reference) > assignments(fn)
@@ -744,16 +743,16 @@ class _Student:
         parameters = {a.arg for a in fn.args.args + fn.args.kwonlyargs}
         line, before, after = fix.changes[0]
         try:
-            read_before, read_after = ({n.id for n in ast.walk(parse(text)) if isinstance(n, ast.Name)} & parameters
+            read_before, read_after = ({n.id for n in walk(parse(text)) if isinstance(n, ast.Name)} & parameters
                                        for text in (before, after))
         except SyntaxError:
             return None
         if read_before <= read_after:
             return None
-        made = {n.id for t in statement.targets for n in ast.walk(t) if isinstance(n, ast.Name)}
-        tests = {id(node.test): node for node in ast.walk(fn) if isinstance(node, ast.If)}
+        made = {n.id for t in statement.targets for n in walk(t) if isinstance(n, ast.Name)}
+        tests = {id(node.test): node for node in walk(fn) if isinstance(node, ast.If)}
         branches, reads = [], 0
-        for node in ast.walk(fn):
+        for node in walk(fn):
             if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load) and node.id in made \
                     and node.lineno > statement.lineno:
                 reads += 1
@@ -764,7 +763,7 @@ class _Student:
                         branch = tests[id(holder)]
                         break
                     if isinstance(parent, ast.If) and holder in parent.body and \
-                            made & {n.id for n in ast.walk(parent.test) if isinstance(n, ast.Name)}:
+                            made & {n.id for n in walk(parent.test) if isinstance(n, ast.Name)}:
                         branch = parent
                         break
                     holder = parent
@@ -772,7 +771,7 @@ class _Student:
                     return None   # (the value is used, not only tested)
                 if branch not in branches:
                     branches.append(branch)
-        exits = [b for b in branches if any(isinstance(n, ast.Return) for s in b.body for n in ast.walk(s))]
+        exits = [b for b in branches if any(isinstance(n, ast.Return) for s in b.body for n in walk(s))]
         if not reads or not exits:
             return None
         exits.sort(key=lambda b: (not (ran and b.body[0].lineno in ran), b.lineno))   # (the one taken first)
@@ -808,7 +807,7 @@ class _Student:
                     # (a loop's names exchanged -- `for x, y in pts` -> `for y, x in pts`, `for i, (X, Y, Z) in
                     # enumerate(pts)` -> `(Y, X, Z)` -- named as the reference names them, or in their axes'
                     # order: the names would lie)
-                    for part in (n for n in ast.walk(node.target) if isinstance(n, ast.Tuple)):
+                    for part in (n for n in walk(node.target) if isinstance(n, ast.Tuple)):
                         told = [t.id for t in part.elts if isinstance(t, ast.Name)]
                         if mutant.edits[0][2] == "swap_items" and _names_as_written(told, self.reference_parts,
                                                                                     node.iter):
@@ -844,7 +843,7 @@ class _Student:
         (`K, R, t = ...`) that start at ``line``: the module walked once, not once per change."""
         if self._unpacking is None:
             found: dict = {}
-            for node in ast.walk(self.tree):
+            for node in walk(self.tree):
                 if (isinstance(node, ast.For) and isinstance(node.target, ast.Tuple)) or (
                         isinstance(node, ast.Assign) and len(node.targets) == 1
                         and isinstance(node.targets[0], (ast.Tuple, ast.List))):
@@ -889,7 +888,7 @@ class _Student:
         failed never enters), else the statement's own."""
         if where not in self._blocks:   # (read once per def: a long function's many moves stay linear)
             fn = self._defs.get(where)
-            self._blocks[where] = {s.lineno: block.lineno for block in (ast.walk(fn) if fn is not None else ())
+            self._blocks[where] = {s.lineno: block.lineno for block in (walk(fn) if fn is not None else ())
                                    if isinstance(block, (ast.If, ast.For, ast.While)) for s in block.body}
         return self._statement_of(where, self._blocks[where].get(line, line))
 
@@ -905,7 +904,7 @@ class _Student:
         if where not in self._statements:
             fn, starts = self._defs.get(where), {}
             if fn is not None and fn.body:
-                for statement in ast.walk(fn):   # outer statements first: inner ones overwrite
+                for statement in walk(fn):   # outer statements first: inner ones overwrite
                     if isinstance(statement, ast.stmt) and statement is not fn:
                         for held in range(statement.lineno, (statement.end_lineno or statement.lineno) + 1):
                             starts[held] = statement.lineno
@@ -924,7 +923,7 @@ class _Student:
         return any(isinstance(node, ast.If) and node.test.lineno in lines
                    and any(isinstance(statement, ast.Raise) and statement.lineno in raised_lines
                            for statement in node.body)
-                   for node in ast.walk(self.tree))
+                   for node in walk(self.tree))
 
     def guards(self, mutant) -> list:
         """The mutant's code with a condition it changes made constant instead, True then False
@@ -1059,15 +1058,15 @@ class _Student:
         nothing, and such a change mends only by being true on the inputs tried (a bound that never binds)."""
         def own_sized(fn) -> set:
             found = set()
-            for node in ast.walk(fn):
+            for node in walk(fn):
                 if not isinstance(node, ast.Compare):
                     continue
                 sides = [node.left, *node.comparators]
                 bare = {side.id for side in sides if isinstance(side, ast.Name)}
-                sized = {part.args[0].id for side in sides for part in ast.walk(side)
+                sized = {part.args[0].id for side in sides for part in walk(side)
                          if isinstance(part, ast.Call) and _call_name(part) == "len" and part.args
                          and isinstance(part.args[0], ast.Name)}
-                sized |= {part.value.id for side in sides for part in ast.walk(side)
+                sized |= {part.value.id for side in sides for part in walk(side)
                           if isinstance(part, ast.Attribute) and part.attr in ("shape", "size")
                           and isinstance(part.value, ast.Name)}
                 if bare & sized:
@@ -1208,9 +1207,9 @@ class _Student:
             statement = parents.get(id(statement), (None,))[0]
         if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1):
             return False
-        if computed and not any(isinstance(n, ast.Name) for n in ast.walk(statement.value)):
+        if computed and not any(isinstance(n, ast.Name) for n in walk(statement.value)):
             return False   # (a threshold written as a number, read by a test: the number may be the slip)
-        made = [n for n in ast.walk(statement.targets[0]) if isinstance(n, ast.Name)]
+        made = [n for n in walk(statement.targets[0]) if isinstance(n, ast.Name)]
         guarded = self._guard_only_names(where, raising)
         return bool(made) and all(n.id in guarded for n in made)
 
@@ -1224,7 +1223,7 @@ class _Student:
         nodes, parents = self._walk(where)
         in_tests = {id(n) for guard in nodes if isinstance(guard, ast.If) and (
                         not raising or any(isinstance(b, ast.Raise) for b in guard.body))
-                    for n in ast.walk(guard.test)}
+                    for n in walk(guard.test)}
         reads: dict = {}   # name -> [(read in a guard's test, the names the statement reading it makes)]
         for node in nodes:
             if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
@@ -1232,7 +1231,7 @@ class _Student:
                 while statement is not None and not isinstance(statement, ast.stmt):
                     statement = parents.get(id(statement), (None,))[0]
                 makes = frozenset(n.id for target in getattr(statement, "targets", ())
-                                  for n in ast.walk(target) if isinstance(n, ast.Name)) \
+                                  for n in walk(target) if isinstance(n, ast.Name)) \
                     if isinstance(statement, ast.Assign) else frozenset()
                 reads.setdefault(node.id, []).append((id(node) in in_tests, makes))
         # A name joins once every reading is a guard's or makes guarded names only: a worklist over the
@@ -1303,14 +1302,14 @@ class _Student:
                 continue
             assigns = isinstance(before, (ast.Assign, ast.AugAssign, ast.AnnAssign))
             sized = (assigns and bool(_bound_names(before) & sizes)) or any(
-                id(arg) in {id(n) for n in ast.walk(before)} for arg in _output_size_arguments(before))
+                id(arg) in {id(n) for n in walk(before)} for arg in _output_size_arguments(before))
             negated = lambda statement: sum(isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.USub)  # noqa: E731
-                                            for n in ast.walk(statement))
+                                            for n in walk(statement))
             return sized and (negated(after) > negated(before) or any(
                 isinstance(a, ast.BinOp) and isinstance(a.op, ast.Sub) and isinstance(b, ast.BinOp)
                 and isinstance(b.op, ast.Sub) and ast.dump(a.left) == ast.dump(b.right)
                 and ast.dump(a.right) == ast.dump(b.left) and ast.dump(a.left) != ast.dump(a.right)
-                for a, b in zip(ast.walk(before), ast.walk(after))))
+                for a, b in zip(walk(before), walk(after))))
         return False
 
     def skips_a_right_step(self, mutant) -> bool:
@@ -1330,7 +1329,7 @@ class _Student:
             return False
         step = max(made, key=lambda n: n.lineno).value
         if not (_derived_names(node.id, payload) and any(isinstance(n, ast.Name) and n.id == payload
-                                                         for n in ast.walk(step))):
+                                                         for n in walk(step))):
             return False   # (the name's own earlier form, `Fn` for `F`, not any name the step reads)
         return naming._alike(step) in _reference_shapes(self.reference_source)
 
@@ -1410,7 +1409,7 @@ class _Student:
             # (and names a loop unpacks together, `for m, n in pairs`: a ratio test written
             # `n.distance < 0.75 * m.distance` has the two exchanged)
             pairs = set()
-            for loop in ast.walk(fn):
+            for loop in walk(fn):
                 if isinstance(loop, (ast.For, ast.comprehension)) and isinstance(loop.target, ast.Tuple):
                     names = [n.id for n in loop.target.elts if isinstance(n, ast.Name)]
                     pairs |= {(a, b) for a in names for b in names if a != b}
@@ -1451,12 +1450,12 @@ class _Student:
         a module constant: a choice between it and another (`s = DEFAULT if smoothness is None else
         smoothness`, `k = k or 3`), or a step of it alone (`pts_n = pts - pts.mean(axis=0)`, `grey =
         cv2.cvtColor(image, ...)`; modules and constants aside)."""
-        modules = {alias.asname or alias.name.split(".")[0] for node in ast.walk(self.tree)
+        modules = {alias.asname or alias.name.split(".")[0] for node in walk(self.tree)
                    if isinstance(node, (ast.Import, ast.ImportFrom)) for alias in node.names}
         raw = {a.arg for a in fn.args.args + fn.args.kwonlyargs}
-        constants = {node.id for node in ast.walk(fn) if isinstance(node, ast.Name) and node.id.isupper()}
+        constants = {node.id for node in walk(fn) if isinstance(node, ast.Name) and node.id.isupper()}
         made = {}
-        for node in ast.walk(fn):
+        for node in walk(fn):
             if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
                 continue
             target, value = node.targets[0].id, node.value
@@ -1464,7 +1463,7 @@ class _Student:
                 branches = [value.body, value.orelse] if isinstance(value, ast.IfExp) else value.values
                 sources = {b.id for b in branches if isinstance(b, ast.Name)} & (raw | constants)
             else:
-                read = {n.id for n in ast.walk(value) if isinstance(n, ast.Name)} - modules - constants
+                read = {n.id for n in walk(value) if isinstance(n, ast.Name)} - modules - constants
                 sources = read if len(read) == 1 and read <= raw else set()
             for source in sources - {target}:
                 made.setdefault((source, target), node.lineno)
@@ -1515,8 +1514,8 @@ class _Student:
         if made is using or not isinstance(made, (ast.Assign, ast.AugAssign)) or made.lineno >= using.lineno:
             return False
         targets = made.targets if isinstance(made, ast.Assign) else [made.target]
-        assigned = {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
-        return any(isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load) and n.id in assigned for n in ast.walk(using))
+        assigned = {n.id for t in targets for n in walk(t) if isinstance(n, ast.Name)}
+        return any(isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load) and n.id in assigned for n in walk(using))
 
     def _edited(self, first, second):
         """((the node the first change edits, the second's), the def's parents), both in one def; or None."""
@@ -1548,7 +1547,7 @@ class _Student:
         """(the statement holding ``node``, its position among the statement's nodes), found once per node."""
         if id(node) not in self._places:
             statement = self._statement_node(node, parents)
-            self._places[id(node)] = statement, next((i for i, held in enumerate(ast.walk(statement)) if held is node), None)
+            self._places[id(node)] = statement, next((i for i, held in enumerate(walk(statement)) if held is node), None)
         return self._places[id(node)]
 
     def _shape(self, statement) -> str:
@@ -1599,7 +1598,7 @@ class _Student:
         if fn is None:
             return [], {}
         if where not in self._walked:
-            self._walked[where] = (list(ast.walk(fn)), _parents(fn))
+            self._walked[where] = (list(walk(fn)), _parents(fn))
         return self._walked[where]
 
     def fix(self, mutant) -> Fix | None:
@@ -1639,7 +1638,7 @@ class _Student:
         if not made:
             return ()
         step = max(made, key=lambda n: n.lineno)
-        read = {n.id for n in ast.walk(step.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+        read = {n.id for n in walk(step.value) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
         if payload not in read:
             return ()
         statement = node
@@ -1654,7 +1653,7 @@ class _Student:
             return ()   # (a name made by stacking a column onto the other -- `Xh = [pts | 1]` -- holds it: its
             # column read from the other, `pts[:, -1]` for `Xh[:, -1]`, is another column, no step skipped)
         local = {n.id for n in nodes if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)} \
-            | {a.arg for a in ast.walk(self._defs[where].args) if isinstance(a, ast.arg)}
+            | {a.arg for a in walk(self._defs[where].args) if isinstance(a, ast.arg)}
         module = {t.id for statement in self.tree.body if isinstance(statement, ast.Assign)
                   for t in statement.targets if isinstance(t, ast.Name)}
         constants = tuple(sorted(n for n in read if n in module and n not in local))
@@ -1758,9 +1757,9 @@ class _Student:
                 break
             context = parent
         before = ast.unparse(context)
-        copied = copy.deepcopy(context)
-        position = next(i for i, node in enumerate(ast.walk(context)) if node is edited)
-        target = list(ast.walk(copied))[position]
+        copied = copy_tree(context)
+        position = next(i for i, node in enumerate(walk(context)) if node is edited)
+        target = list(walk(copied))[position]
         made = _MAKE[operator](target, payload)
         if target is copied:
             copied = made
@@ -1822,10 +1821,10 @@ def _feeding(nodes, statement, name: str) -> set[int]:
                 and isinstance(call.args[0], ast.Name) else set()
         else:
             targets = step.targets if isinstance(step, ast.Assign) else [step.target]
-            written = {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+            written = {n.id for t in targets for n in walk(t) if isinstance(n, ast.Name)}
         if written & wanted:
             lines.add(step.lineno)
-            wanted |= {n.id for n in ast.walk(step) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+            wanted |= {n.id for n in walk(step) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
     return lines
 
 
@@ -1912,7 +1911,7 @@ def _neutralises_a_pair(student, mutant) -> bool:
             and isinstance(statement.targets[0], ast.Name)):
         return False
     name = statement.targets[0].id
-    return sum(isinstance(n, ast.Name) and n.id == name and isinstance(n.ctx, ast.Load) for n in ast.walk(fn)) >= 2
+    return sum(isinstance(n, ast.Name) and n.id == name and isinstance(n.ctx, ast.Load) for n in walk(fn)) >= 2
 
 
 def _one_argument_twice(fix: Fix) -> bool:
@@ -1927,7 +1926,7 @@ def _one_argument_twice(fix: Fix) -> bool:
             tree = parse(text)
         except (SyntaxError, ValueError, RecursionError, MemoryError):
             return 0
-        return sum(len(names) - len(set(names)) for call in ast.walk(tree) if isinstance(call, ast.Call)
+        return sum(len(names) - len(set(names)) for call in walk(tree) if isinstance(call, ast.Call)
                    for names in [[a.id for a in call.args if isinstance(a, ast.Name)]])
     return any(repeated(after) > repeated(before) for _, before, after in fix.changes)
 
@@ -1954,12 +1953,12 @@ def _identity_order(text: str) -> bool:
         return False
     return any(isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) >= 2
                and [getattr(e, "value", None) for e in node.elts] == list(range(len(node.elts)))
-               for node in ast.walk(tree))
+               for node in walk(tree))
 
 
 def _read(statement) -> set:
     """The names a statement reads (a subscript assignment's `s` in `s[0] = 0` included)."""
-    return {node.id for node in ast.walk(statement) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
+    return {node.id for node in walk(statement) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
 
 
 def _item_of_pair(node, parents) -> tuple | None:
@@ -1969,7 +1968,7 @@ def _item_of_pair(node, parents) -> tuple | None:
     while id(item) in parents:
         parent, _, index = parents[id(item)]
         if isinstance(parent, (ast.Tuple, ast.List)) and index is not None:
-            return parent, index, (_shape_of(item), next(i for i, held in enumerate(ast.walk(item)) if held is node))
+            return parent, index, (_shape_of(item), next(i for i, held in enumerate(walk(item)) if held is node))
         if isinstance(parent, ast.stmt):
             return None
         item = parent
@@ -1989,8 +1988,8 @@ def _call_name(call: ast.Call) -> str:
 
 def _shape_of(statement) -> str:
     """A statement's code with every name the same: two lines written alike for two images compare equal."""
-    masked = copy.deepcopy(statement)
-    for node in ast.walk(masked):
+    masked = copy_tree(statement)
+    for node in walk(masked):
         if isinstance(node, ast.Name):
             node.id = "_"
     return ast.dump(masked)
@@ -2074,7 +2073,7 @@ def _student_code(trial) -> _Student | None:
     read = None
     try:
         tree = parse(text)   # the student's text: within the bounds, under the parse lock
-        if sum(1 for _ in ast.walk(tree)) <= MAX_NODES:
+        if sum(1 for _ in walk(tree)) <= MAX_NODES:
             read = _Student(text, tree, api)
             model = naming.model_for(trial.lab)
             read.reference_parts = _named_parts(model.source) if model is not None else frozenset()
@@ -2124,21 +2123,21 @@ def _extra_step(fix: Fix, reference_source: str, function: str) -> bool:
 
 def _operations(text: str) -> Counter:
     """The kinds of arithmetic in a piece of code (`@`, `/`, `*`, `+`, `-`), counted."""
-    return Counter(type(node.op).__name__ for node in ast.walk(parse(text)) if isinstance(node, (ast.BinOp, ast.AugAssign)))
+    return Counter(type(node.op).__name__ for node in walk(parse(text)) if isinstance(node, (ast.BinOp, ast.AugAssign)))
 
 
 @functools.lru_cache(maxsize=64)
 def _reference_operations(source: str, function: str) -> frozenset:
     """The kinds of arithmetic the reference's ``function`` and the defs it runs do."""
     defs = _defs(_reference_tree(source))
-    return frozenset(type(node.op).__name__ for name in runs(defs, function) for node in ast.walk(defs[name])
+    return frozenset(type(node.op).__name__ for name in runs(defs, function) for node in walk(defs[name])
                      if isinstance(node, (ast.BinOp, ast.AugAssign)))
 
 
 @functools.lru_cache(maxsize=8)
 def _reference_shapes(source: str) -> frozenset:
     """The reference's expressions with an operation in them, names aside (:func:`naming._alike`)."""
-    return frozenset(naming._alike(node) for fn in _defs(_reference_tree(source)).values() for node in ast.walk(fn)
+    return frozenset(naming._alike(node) for fn in _defs(_reference_tree(source)).values() for node in walk(fn)
                      if isinstance(node, (ast.BinOp, ast.Call, ast.Compare, ast.Subscript)))
 
 
@@ -2161,7 +2160,7 @@ def _reference_texts(source: str) -> dict[str, frozenset]:
     (``ast.unparse`` forms, as :class:`Fix` shows the student's)."""
     texts = {}
     for name, fn in _defs(_reference_tree(source)).items():
-        texts[name] = frozenset(ast.unparse(node) for node in ast.walk(fn)
+        texts[name] = frozenset(ast.unparse(node) for node in walk(fn)
                                 if isinstance(node, (ast.stmt, ast.expr)) and node is not fn
                                 and not isinstance(node, (ast.Name, ast.Constant, ast.Attribute)))
     return texts
@@ -2177,7 +2176,7 @@ def _named_parts(source: str) -> frozenset:
     except (SyntaxError, ValueError, RecursionError, MemoryError):
         return frozenset()
     named = set()
-    for node in ast.walk(tree):
+    for node in walk(tree):
         target, value = (node.targets[0], node.value) if isinstance(node, ast.Assign) and len(node.targets) == 1 \
             else (node.target, None) if isinstance(node, ast.For) else (None, None)
         if isinstance(target, (ast.Tuple, ast.List)) and all(isinstance(t, ast.Name) for t in target.elts):
@@ -2197,7 +2196,7 @@ def _value_key(value) -> str:
     anything else."""
     rows_first = lambda n: (isinstance(n, ast.Attribute) and n.attr == "shape") or (  # noqa: E731
         isinstance(n, ast.Call) and _call_name(n).rsplit(".", 1)[-1] in _ROWS_FIRST)
-    return "shape" if value is not None and any(rows_first(n) for n in ast.walk(value)) else ""
+    return "shape" if value is not None and any(rows_first(n) for n in walk(value)) else ""
 
 
 _AXIS_ORDER = (("x", "y"), ("u", "v"), ("x", "z"), ("y", "z"))
@@ -2257,7 +2256,7 @@ def _in_known_order(names, value) -> bool:
                    for known in _CHANNELS)
     if isinstance(value, ast.Tuple) and len(value.elts) == len(lowered) == 2:
         # (`col, row = u / w, v / w`: each name says the axis of the value it takes -- x, u, col; y, v, row)
-        read = [next((n.id.lower() for n in ast.walk(e) if isinstance(n, ast.Name)), "") for e in value.elts]
+        read = [next((n.id.lower() for n in walk(e) if isinstance(n, ast.Name)), "") for e in value.elts]
         if all(name in axis and given in axis for name, given, axis in zip(lowered, read, (_X_NAMES, _Y_NAMES))):
             return True
         # (or by a word of each, in either order: `missing_rows, missing_cols = height - ..., width - ...`)
@@ -2307,7 +2306,7 @@ def _abbreviated(before, after) -> tuple[str, str]:
     kept = _arguments(before) & _arguments(after)   # (the same call's same argument, on both sides)
 
     def cut(node) -> str:
-        node = copy.deepcopy(node)
+        node = copy_tree(node)
         for call, function in _calls_counted(node):
             call.args = [_ELLIPSIS if (function, i, ast.dump(a)) in kept and len(ast.unparse(a)) > 8 else a
                          for i, a in enumerate(call.args)]
@@ -2334,7 +2333,7 @@ def _calls_counted(node) -> list:
     keep their arguments apart."""
     seen: Counter = Counter()
     counted = []
-    for call in ast.walk(node):
+    for call in walk(node):
         if isinstance(call, ast.Call):
             function = ast.dump(call.func)
             counted.append((call, (function, seen[function])))
@@ -2621,7 +2620,7 @@ def _unread_steps(fn) -> set[str]:
                     and not (isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant)):
                 yield node
     body = list(flat(fn.body))
-    reads = lambda node: {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}  # noqa: E731
+    reads = lambda node: {n.id for n in walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}  # noqa: E731
     unread = set()
     for k, node in enumerate(body):
         if not (isinstance(node, ast.Assign) and all(isinstance(t, ast.Name) for t in node.targets)):
@@ -2644,7 +2643,7 @@ _OUTPUT_SIZE_AT = {"warpPerspective": 2, "warpAffine": 2, "resize": 1}   # OpenC
 def _output_size_arguments(tree) -> list:
     """The expressions ``tree`` passes to OpenCV as an output size (`dsize`)."""
     found = []
-    for node in ast.walk(tree):
+    for node in walk(tree):
         if isinstance(node, ast.Call) and _dotted(node.func).startswith(("cv2.", "cv.")):
             at = _OUTPUT_SIZE_AT.get(_dotted(node.func).rsplit(".", 1)[-1])
             found += [node.args[at]] if at is not None and len(node.args) > at else []
@@ -2654,17 +2653,17 @@ def _output_size_arguments(tree) -> list:
 
 def _output_size_names(fn) -> set:
     """The names a def passes to OpenCV as an output size (`size`, or `w` and `h` of `(w, h)`)."""
-    return {n.id for arg in _output_size_arguments(fn) for n in ast.walk(arg) if isinstance(n, ast.Name)}
+    return {n.id for arg in _output_size_arguments(fn) for n in walk(arg) if isinstance(n, ast.Name)}
 
 
 def _statements_of(fn) -> list:
     """A def's statements in walking order (two copies of one def, changed at one place, pair up)."""
-    return [node for node in ast.walk(fn) if isinstance(node, ast.stmt) and node is not fn]
+    return [node for node in walk(fn) if isinstance(node, ast.stmt) and node is not fn]
 
 
 def _drawn_on(fn) -> set[str]:
     """The names ``fn`` draws on with OpenCV (the image a cv2.line, cv2.circle, ... is given first)."""
-    return {node.args[0].id for node in ast.walk(fn) if isinstance(node, ast.Call) and node.args
+    return {node.args[0].id for node in walk(fn) if isinstance(node, ast.Call) and node.args
             and isinstance(node.args[0], ast.Name) and _dotted(node.func).startswith(("cv2.", "cv."))
             and _dotted(node.func).rsplit(".", 1)[-1] in _COLOUR_AT}
 
@@ -2677,13 +2676,13 @@ def _size_step_emptied(before, dropped: set) -> bool:
     None, the input's) leaves those steps nothing to do -- a compensation, not the slip. (A size
     computed for what is returned at once, `return cv2.warpAffine(image, M, (out_w, h))`, is the
     slip itself when the answer must keep the input's size.)"""
-    nodes = list(ast.walk(before))
+    nodes = list(walk(before))
     sizes = dropped & _sized_names(nodes)
     if not sizes:
         return False
     assignments = sorted((n for n in nodes if isinstance(n, (ast.Assign, ast.AnnAssign)) and n.value is not None),
                          key=lambda n: n.lineno)
-    reads = lambda node: {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}  # noqa: E731
+    reads = lambda node: {n.id for n in walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}  # noqa: E731
     made = set()   # the values made with those sizes, and those made from them
     for node in assignments:
         if reads(node.value) & (sizes | made):
@@ -2697,7 +2696,7 @@ def _size_step_emptied(before, dropped: set) -> bool:
 
 def _reads_size(node, names) -> bool:
     """Whether the code ``node`` reads an array's size (``.shape``, ``.size``, ``len``) or one of ``names``."""
-    for n in ast.walk(node):
+    for n in walk(node):
         if (isinstance(n, ast.Attribute) and n.attr in ("shape", "size")) or (isinstance(n, ast.Name) and n.id in names) \
                 or (isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "len"):
             return True
@@ -2834,10 +2833,10 @@ def _branch_values(call, fn) -> list:
         if type(given) not in (int, float):
             continue
         values = []
-        for test in (n for n in ast.walk(fn) if isinstance(n, ast.Compare)):
-            if not any(isinstance(n, ast.Name) and n.id == name for n in ast.walk(test.left)):
+        for test in (n for n in walk(fn) if isinstance(n, ast.Compare)):
+            if not any(isinstance(n, ast.Name) and n.id == name for n in walk(test.left)):
                 continue
-            moduli = [n.right for n in ast.walk(test.left) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Mod)]
+            moduli = [n.right for n in walk(test.left) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Mod)]
             for node in moduli + list(test.comparators):
                 value = _literal(node)
                 if type(value) is int and value != given and value not in values:
@@ -2989,7 +2988,7 @@ def _redraws(fix) -> bool:
         except (SyntaxError, ValueError, RecursionError, MemoryError):
             return {}
         return {ast.dump(n.func) + "|" + "|".join(ast.dump(a) for a in n.args): {ast.dump(k) for k in n.keywords}
-                for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
+                for n in walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Attribute)
                 and n.func.attr in RANDOM_DRAWS and _dotted(n.func).split(".")[0] not in ("cv2", "cv")}
 
     for _, before, after in fix.changes:
@@ -4579,20 +4578,20 @@ def _downstream_dropped(repair: Repair, code) -> Repair:
     the earlier one's slip after the fact (`u - d + 0.5` -> `- 0.5` for columns counted from 1 by
     `np.arange(1, width + 1)` above it)."""
     def assigned(fn, line) -> set:
-        return {t.id for node in ast.walk(fn) if isinstance(node, (ast.Assign, ast.AugAssign)) and node.lineno == line
+        return {t.id for node in walk(fn) if isinstance(node, (ast.Assign, ast.AugAssign)) and node.lineno == line
                 for target in (node.targets if isinstance(node, ast.Assign) else [node.target])
-                for t in ast.walk(target) if isinstance(t, ast.Name)}
+                for t in walk(target) if isinstance(t, ast.Name)}
 
     def reaches(fn, line, later) -> bool:   # what `line` assigns flows into `later`
         names = assigned(fn, line)
-        for node in sorted((n for n in ast.walk(fn) if isinstance(n, (ast.Assign, ast.AugAssign))
+        for node in sorted((n for n in walk(fn) if isinstance(n, (ast.Assign, ast.AugAssign))
                             and line < n.lineno <= later), key=lambda n: n.lineno):
-            if {n.id for n in ast.walk(node.value) if isinstance(n, ast.Name)} & names:
+            if {n.id for n in walk(node.value) if isinstance(n, ast.Name)} & names:
                 if node.lineno == later:
                     return True
                 names |= assigned(fn, node.lineno)
-        return any(n.id in names for node in ast.walk(fn) if getattr(node, "lineno", None) == later
-                   for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load))
+        return any(n.id in names for node in walk(fn) if getattr(node, "lineno", None) == later
+                   for n in walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load))
 
     kept = []
     for fix in repair.fixes:

@@ -18,6 +18,7 @@ from ...engine.hints import Predicate, code_of
 from ..lab09 import (ex3, ex4, ext1, judge_in_front, judge_calibration, judge_matrix, judge_points,
                      points_probe, project_mistakes)
 from ._draws import board_views, seed, uncached, uniform
+from ...loading.parsing import walk
 
 
 def hidden_intrinsics(rng) -> np.ndarray:
@@ -103,7 +104,7 @@ def out_of_frame(K, view, pattern, square, size) -> tuple:
 
 
 def _breaks_a_loop(function) -> bool:
-    return any(isinstance(n, ast.Break) for n in ast.walk(function))
+    return any(isinstance(n, ast.Break) for n in walk(function))
 
 
 @ext1.check("hidden: calibrate when one of the views does not show the whole board", points=1, hidden=True)
