@@ -92,3 +92,32 @@ def test_a_forbid_naming_nothing_is_refused_by_every_command(tmp_path, forbid, s
     assert said in str(refused.value)
     path.write_text(json.dumps({"forbid": {"lab08.homography_ransac": ["cv2.findHomography", "np.linalg.svd"]}}))
     assert CourseConfig.load(path).forbid
+
+
+@pytest.mark.parametrize("course, said", [
+    ({"select": ["lab77"]}, "select: nothing to grade matches 'lab77'"),
+    ({"select": ["lab07", "lab07.ex9"]}, "select: nothing to grade matches 'lab07.ex9'"),
+    ({"points": {"lab07": -5}}, "points must be 0 or more: 'lab07' is given -5"),
+    ({"points": {"lab07": True}}, "points must map"),
+    ({"call_timeout": 0}, "call_timeout must be a positive number of seconds"),
+])
+def test_a_course_file_is_refused_with_its_name_and_what_is_wrong(tmp_path, course, said):
+    """Audit of 2026-12-07: a misspelt ``select`` went unnoticed by a grading that selects on the command line
+    (graded, exit 0), a negative point value was told "must map ... to a number of points", and some keys'
+    messages did not name the file. The file is read the same way by every command: each refusal names it."""
+    path = tmp_path / "course_lab7.json"
+    path.write_text(json.dumps(course))
+    with pytest.raises(CourseConfigError) as refused:
+        CourseConfig.load(path)
+    assert str(refused.value).startswith(f"{path}: ") and said in str(refused.value), str(refused.value)
+    assert not str(refused.value).startswith(f"{path}: {path}")
+
+
+def test_a_bad_selection_in_the_course_stops_a_grading_that_selects_itself(tmp_path, capsys):
+    from autograder.cli import main
+
+    path = tmp_path / "course.json"
+    path.write_text(json.dumps({"select": ["lab77"]}))
+    code = main(["grade", str(tmp_path / "nothing_here"), "lab07.ex1", "--config", str(path)])
+    assert code == 2
+    assert "nothing to grade matches 'lab77'" in capsys.readouterr().err

@@ -224,8 +224,13 @@ class CourseConfig:
         if not (isinstance(self.assignment, str) and self.assignment.strip()):
             raise CourseConfigError("assignment must be a non-empty name")
         if not (isinstance(self.points, dict) and all(
-                isinstance(k, str) and isinstance(v, (int, float)) and v >= 0 for k, v in self.points.items())):
+                isinstance(k, str) and isinstance(v, (int, float)) and not isinstance(v, bool)
+                for k, v in self.points.items())):
             raise CourseConfigError("points must map 'lab07' or 'lab07.ex2' to a number of points")
+        negative = [k for k, v in self.points.items() if v < 0]
+        if negative:
+            raise CourseConfigError(f"points must be 0 or more: {negative[0]!r} is given "
+                                    f"{self.points[negative[0]]!r}")
         self._check_late_penalty()
         self._check_extensions()
         if not isinstance(self.inputs_secret, str):
@@ -389,12 +394,28 @@ class CourseConfig:
         late = data.get("late_days")
         if isinstance(late, dict) and isinstance(late.get("ledger"), str) and late["ledger"].strip():
             data["late_days"] = {**late, "ledger": str((Path(path).parent / Path(late["ledger"]).expanduser()).resolve())}
-        course = cls(**data)
-        own = course.use_labs(path)
-        if own and not course.select:   # a course of its own labs grades those, not every built-in lab too
-            course = replace(course, select=own)
-        course.check_forbidden_names()
+        try:   # (every message names the file: an instructor may keep one per assignment)
+            course = cls(**data)
+            own = course.use_labs(path)
+            course.check_selection()
+            if own and not course.select:   # a course of its own labs grades those, not every built-in lab too
+                course = replace(course, select=own)
+            course.check_forbidden_names()
+        except CourseConfigError as exc:
+            raise CourseConfigError(str(exc) if str(exc).startswith(f"{path}:") else f"{path}: {exc}") from None
         return course
+
+    def check_selection(self) -> None:
+        """Every name in ``select`` grades something (its labs registered): a misspelt one would
+        otherwise be noticed only by a grading that reads it -- never by one that selects on the
+        command line. Raises :class:`CourseConfigError` naming the first that does not."""
+        from ..engine.registry import SelectionError, select
+
+        for selector in self.select:
+            try:
+                select([selector])
+            except SelectionError as exc:
+                raise CourseConfigError(f"select: {exc}") from None
 
     def check_forbidden_names(self) -> None:
         """Every ``forbid`` key names a student function some exercise grades (its lab registered), and every
