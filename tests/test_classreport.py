@@ -209,6 +209,20 @@ def test_mistake_labels():
     assert first_sentence("error 3.5 px where the best has 0.25 px. Look again") == "error # px where the best has # px"
 
 
+def test_one_exception_relayed_by_several_checks_is_one_kind_of_failure():
+    """Audit of 2026-12-07: one student's NameError, told by one check as it was and by another with the input it
+    raised on, was listed as two kinds of failure of one student."""
+    exercise = {"id": "lab07.ex1", "title": "t", "score": 0.0, "max_score": 2.0, "checks": [
+        {"name": "a", "status": FAILED, "score": 0, "max_score": 1,
+         "message": "scale() raised NameError: name 'np' is not defined"},
+        {"name": "b", "status": FAILED, "score": 0, "max_score": 1,
+         "message": "scale() raised NameError: name 'np' is not defined (raised on scale(grey image, sx=2.0, sy=0.8))"},
+    ]}
+    student = StudentRecord("ann", "Ann", result={"total": 0.0, "max_total": 2.0, "exercises": [exercise]})
+    [summary] = summarise([student]).exercises
+    assert [(g.label, g.count) for g in summary.other_failures] == [("scale() raised NameError: name 'np' is not defined", 1)]
+
+
 def test_records_from_the_gradebooks_class_results():
     rows = [{"student_id": "alice", "display_name": "Alice A", "status": "graded", "reason": "",
              "result": {"total": 1.0, "max_total": 2.0, "exercises": []}, "feedback": "alice/feedback.html",

@@ -184,6 +184,9 @@ def test_the_class_overview_tells_each_students_extension_excused_work_and_days_
     page = overview_html(list(records.values()))
     assert '<span class="rules">extension +2 days</span>' in page and '<span class="rules">excused</span>' in page
     assert '<span class="rules">late days: 1 used · late 2 days, -1</span>' in page
+    # (an excused student has no final grade: not the checks' points told as one, audit of 2026-12-07)
+    bo = page[page.index("<li>bo "):page.index("</li>", page.index("<li>bo "))]
+    assert "not counted (checks 10 / 10)" in bo and "/ 10" not in bo.split("(checks")[0], bo
 
 
 def test_the_batch_says_where_it_wrote_the_pooled_ledger(tmp_path, capsys):

@@ -42,7 +42,7 @@ def test_each_run_lists_the_grades_it_moved_and_why(tmp_path):
     moved = run_batch(download, out, course=COURSE, workers=2)
     [change] = moved.changes
     assert (change.student_id, change.before, change.after, change.why) == ("bo", 0.0, 12.0, "new submission")
-    assert change.parts and change.parts[0].startswith("lab07.ex1: 0 -> 12 (checks: ")
+    assert change.parts and change.parts[0].startswith("lab07.ex1: 0 -> 12 (checks' own points: ")
     row = changes_csv(out)["bo"]
     assert (row["Before"], row["After"], row["Why regraded"]) == ("0", "12", "new submission")
     assert "lab07.ex1: 0 -> 12" in row["What moved it"]
@@ -117,5 +117,23 @@ def test_a_roster_student_with_nothing_handed_in_is_no_changed_grade():
     from autograder.instructor.batch.changes import compare
 
     assert compare({}, {"eve": {"name": "Eve", "total": None}}) == []
-    [change] = compare({}, {"ada": {"name": "Ada", "total": 10.0}})
-    assert change.why == "first grading"
+    [change] = compare({}, {"ada": {"name": "Ada", "total": 10.0, "exercises": {"lab07.ex1": 10.0},
+                                    "checks": {"lab07.ex1: translate": 4, "lab07.ex1: hidden check 1": 2}}})
+    # a newcomer's line says so, not every exercise and check "moved" from nothing (audit: 20 wrapped lines)
+    assert change.why == "first grading" and change.parts == []
+    assert change.sentence() == "ada: - -> 10 (first grading)"
+
+
+def test_a_grade_moved_without_grading_again_is_not_told_graded_again():
+    """While hidden points are withheld a student's page tells only that the grade changed and why: an override, a
+    reviewed report or an extension changes it without grading the code again (audit of 2026-12-07: "Graded again
+    since your previous grading (override changed)" after a run that graded nothing)."""
+    from autograder.instructor.batch.changes import Change
+    from autograder.instructor.batch.exports import changed_html
+
+    override = changed_html(Change("ada", "Ada", 10.0, 12.0, "override changed", ["override lab07.ex2 set to 1"]),
+                            show_final=False)
+    assert "Your grade changed since your previous grading</strong> (override changed)" in override
+    assert "Graded again" not in override and "12" not in override
+    resubmitted = changed_html(Change("ada", "Ada", 10.0, 12.0, "new submission", []), show_final=False)
+    assert "Graded again since your previous grading</strong> (new submission)" in resubmitted

@@ -6,7 +6,7 @@ adjustments, the reviewed reports), with the submission's content and the grader
 it was graded under. The next run compares its standings with the recorded ones:
 
 * a student whose final grade moved is listed, ``old -> new``, with the parts that moved it
-  ("lab07.ex2: 0 -> 12 (checks: translate moves the image 0 -> 4, ...)", "late penalty
+  ("lab07.ex2: 0 -> 12 (checks' own points: translate moves the image 0 -> 4, ...)", "late penalty
   0 -> 7.3", "override ...", "lab07.ex1 report 0 -> 3") and why it was regraded (a new
   submission, a changed grader or course);
 * the list is printed by ``autograder batch``, written as ``changes.csv`` and shown in the
@@ -79,8 +79,9 @@ def compare(before: dict[str, dict], after: dict[str, dict]) -> list[Change]:
             continue
         if old is None and new.get("total") is None:   # (a roster's student with nothing handed in: no grade yet)
             continue
+        # (a first grading is told as such: every exercise and check of a newcomer "moved" would bury the real changes)
         changed.append(Change(student_id, new.get("name", ""), (old or {}).get("total"), new.get("total"),
-                              _why(old, new), _parts(old or {}, new)))
+                              _why(old, new), _parts(old, new) if old is not None else []))
     return changed
 
 
@@ -120,7 +121,8 @@ def _parts(old: dict, new: dict) -> list[str]:
         moved = [f"{name.split(': ', 1)[1]} {_points(old_checks.get(name))} -> {_points(new_checks.get(name))}"
                  for name in sorted(set(old_checks) | set(new_checks))
                  if name.startswith(f"{exercise}: ") and not _same(old_checks.get(name), new_checks.get(name))]
-        parts.append(f"{exercise}: {_points(a)} -> {_points(b)}" + (f" (checks: {', '.join(moved[:4])}"
+        # (an exercise in the course's points, its checks in their own: the course may rescale them)
+        parts.append(f"{exercise}: {_points(a)} -> {_points(b)}" + (f" (checks' own points: {', '.join(moved[:4])}"
                                                                      + (", ..." if len(moved) > 4 else "") + ")"
                                                                      if moved else ""))
     if not _same(old.get("late") or 0.0, new.get("late") or 0.0):

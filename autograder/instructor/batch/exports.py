@@ -791,6 +791,7 @@ def student_page(page: str, grade: StudentGrade, possible: float, course: Course
 
 
 CHANGED, CHANGED_END = "<!-- changed -->", "<!-- /changed -->"
+REGRADED = ("new submission", "grader or course changed")   # the reasons of a change that graded the code again
 
 
 def changed_html(change, show_final: bool) -> str:
@@ -798,8 +799,9 @@ def changed_html(change, show_final: bool) -> str:
     withheld, only that it was regraded and why (every number could hold hidden points)."""
     if change.before is None:
         return ""
-    if not show_final:
-        return (f'<div class="rule changed"><strong>Graded again since your previous grading</strong>'
+    if not show_final:   # (an override, a reviewed report or an extension moves a grade without grading anew)
+        said = "Graded again" if change.why in REGRADED else "Your grade changed"
+        return (f'<div class="rule changed"><strong>{said} since your previous grading</strong>'
                 f"{f' ({html.escape(change.why)})' if change.why else ''}.</div>")
     items = "".join(f"<li>{html.escape(part)}</li>" for part in change.parts)
     return (f'<div class="rule changed"><strong>Since your previous grading: {_fmt(change.before)} → '

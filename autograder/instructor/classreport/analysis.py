@@ -254,11 +254,15 @@ def _readable(mistake: str, message: str) -> str:
     return mistake
 
 
+_RAISED_ON = re.compile(r"\s*\(raised on .*\)$")   # the input a relayed exception came from (lab07.py, lab08.py)
+
+
 def first_sentence(message: str) -> str:
-    """The message's first sentence with every number blanked: failures that differ only in numbers group together."""
+    """The message's first sentence with every number blanked and the input it names left out: failures that
+    differ only in numbers, or one exception relayed by several checks, each on its own input, group together."""
     line = message.strip().splitlines()[0]
     sentence = re.split(r"(?<=[.!?])\s", line, maxsplit=1)[0].rstrip(".:; ")
-    return _NUMBER.sub("#", sentence)
+    return _NUMBER.sub("#", _RAISED_ON.sub("", sentence))
 
 
 def _attempted(exercise: dict) -> bool:
