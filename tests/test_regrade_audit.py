@@ -137,3 +137,26 @@ def test_a_grade_moved_without_grading_again_is_not_told_graded_again():
     assert "Graded again" not in override and "12" not in override
     resubmitted = changed_html(Change("ada", "Ada", 10.0, 12.0, "new submission", []), show_final=False)
     assert "Graded again since your previous grading</strong> (new submission)" in resubmitted
+
+
+def test_a_run_asking_for_other_pictures_or_figures_says_which_pages_keep_theirs(tmp_path):
+    """Pictures and the rubric's figures change no score: a run asking for others grades nothing again, and says so
+    with what to do (audit of 2026-12-07: a rubric added, or --pictures all, to a graded class made no figures and no
+    pictures, silently: "0 graded now"). A --regrade makes them, and the note is gone."""
+    download, out = tmp_path / "download", tmp_path / "out"
+    write(download / "ann" / f"{MODULE}.py", reference())
+    write(download / "bo" / f"{MODULE}.py", reference() + WRONG_WAY)
+    first = run_batch(download, out, course=COURSE, workers=2)
+    assert first.graded == 2 and not [w for w in first.warnings if "graded before" in w]
+    rubric = {"lab07.ex1": [{"id": "why", "text": "explains the warp", "points": 1}]}
+    asked = CourseConfig(select=COURSE.select, assignment=COURSE.assignment, rubric=rubric)
+    again = run_batch(download, out, course=asked, pictures="all", workers=2)
+    [note] = [w for w in again.warnings if "graded before" in w]
+    assert again.graded == 0 and note.startswith("2 submissions graded before keep the pages made with "
+                                                 "pictures: failing; figures: none, not this run's pictures: all; "
+                                                 "figures: lab07.ex1"), note
+    assert "--regrade" in note
+    regraded = run_batch(download, out, course=asked, pictures="all", regrade=True, workers=2)
+    assert regraded.graded == 2 and not [w for w in regraded.warnings if "graded before" in w]
+    assert not [w for w in run_batch(download, out, course=asked, pictures="all", workers=2).warnings
+                if "graded before" in w]

@@ -48,6 +48,9 @@ from .task import grade_files, grading_processes
 PICTURES = {"none": "none", "failing": "failed", "all": "all"}
 POOL_ATTEMPTS = 3   # a submission whose grading kills the grading process this often is recorded as failed
 REGRADE_LEFT = "regrade left"   # the gradebook's record of the submissions a --regrade has still to grade again
+# Per submission graded, the pictures and the rubric's figures its page was made with: they change no score, so a
+# run asking for others grades nothing again by itself -- and says which pages keep what they were made with.
+PRESENTED = "presented"
 
 
 class Unconfined(IngestError):
@@ -164,6 +167,16 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
                                     "were left to grade again")
         todo = [e for e in readable if keys[e.student_id] in left or not book.is_graded(keys[e.student_id])]
         summary.reused = len(readable) - len(todo)
+        presented, shown = _presented(book), _presentation(pictures, course)
+        graded_now = {e.student_id for e in todo}
+        kept = sorted(presented[keys[e.student_id]] for e in readable if e.student_id not in graded_now
+                      and presented.get(keys[e.student_id], shown) != shown)
+        if kept:
+            summary.warnings.append(
+                f"{len(kept)} submission{'s' if len(kept) != 1 else ''} graded before keep the pages made with "
+                f"{kept[0]}{' (or other settings)' if len(set(kept)) > 1 else ''}, not this run's {shown}: "
+                "pictures and the rubric's figures change no score, so nothing is graded again for them "
+                "-- add --regrade to make those pages anew")
 
         def finished(entry: Entry, outcome: dict):
             # A fault of RESULTS (full, read-only, deleted) stops the batch with a StorageError;
@@ -177,6 +190,7 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
                     _write_student(out, entry, outcome["json"], outcome["page"],   # files first, then the commit
                                    outcome.get("figures"))
                     book.record(key, entry.student_id, entry.content_hash, selection, outcome["result"], lock=lock)
+                    presented[key] = shown
                     summary.graded += 1
                 except (OSError, ValueError, TypeError, KeyError) as exc:
                     outcome = {"error": f"the results could not be stored: {type(exc).__name__}: {exc}"}
@@ -207,6 +221,8 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
 
         if left:   # (every submission graded: a key left belongs to no one handed in now)
             book.set_meta(REGRADE_LEFT, "[]")
+        book.set_meta(PRESENTED, json.dumps({key: presented[key] for key in set(keys.values()) if key in presented},
+                                            sort_keys=True))
         standing = class_grades(book, course)
         # Every run is an audit: whose final grade moved since the last one, and what moved it.
         before, _ = changes.recorded(book)
@@ -236,6 +252,20 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
                                 else "not on the roster") for g in standing.grades
                              if g.student["status"] == "no submission" or not g.roster]
     return summary
+
+
+def _presentation(pictures: str, course: CourseConfig) -> str:
+    """The pictures and figures a grading's page is made with, in words."""
+    return f"pictures: {pictures}; figures: {', '.join(sorted(course.rubric)) or 'none'}"
+
+
+def _presented(book: Gradebook) -> dict[str, str]:
+    """:data:`PRESENTED` as the gradebook keeps it (empty where an earlier version kept none)."""
+    try:
+        kept = json.loads(book.get_meta(PRESENTED) or "{}")
+    except ValueError:
+        return {}
+    return {k: v for k, v in kept.items() if isinstance(k, str) and isinstance(v, str)} if isinstance(kept, dict) else {}
 
 
 @dataclass
