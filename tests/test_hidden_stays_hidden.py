@@ -292,7 +292,8 @@ def test_gradescope_results(gradings, graded_as, kind, points_visible, tmp_path)
                                                      for c in e.checks if c.hidden)
     scores = student_scores(result, points_visible)
     total = sum(score for score, _ in scores.values()), sum(maximum for _, maximum in scores.values())
-    assert f"Total: {total[0]:g} / {total[1]:g}\n" in data["output"]
+    withheld = "" if points_visible else " (public checks only; the grade counts the hidden checks too)"
+    assert f"Total: {total[0]:g} / {total[1]:g}{withheld}\n" in data["output"]
     for e in result.exercises:
         assert f"{e.id} {e.title}: {scores[e.id][0]:g} / {scores[e.id][1]:g}" in data["output"]
 

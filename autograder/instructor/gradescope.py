@@ -80,7 +80,11 @@ def _summary(result: GradingResult) -> str:
     exercise's score, a module-wide problem said once per lab, and where the full
     feedback page is."""
     lines = [f"Note: {note}" for note in result.notes]
-    lines.append(f"Total: {result.total:g} / {result.max_total:g}")
+    # (while hidden points are withheld this total is not results.json's score, which Gradescope keeps from students
+    # until the tests are published: said on the line itself, for whoever reads the file)
+    lines.append(f"Total: {result.total:g} / {result.max_total:g}"
+                 + (" (public checks only; the grade counts the hidden checks too)" if result.hidden_points_withheld
+                    else ""))
     said = set()
     for e in result.exercises:
         line = f"{e.id} {e.title}: {e.score:g} / {e.max_score:g}"

@@ -163,8 +163,9 @@ def run_batch(submissions, out, *, course: CourseConfig | None = None, workers: 
             left = {keys[e.student_id] for e in readable}
             book.set_meta(REGRADE_LEFT, json.dumps(sorted(left)))
         elif left:
-            summary.warnings.append(f"an interrupted regrade resumed: {len(left & set(keys.values()))} submissions "
-                                    "were left to grade again")
+            count = len(left & set(keys.values()))
+            summary.warnings.append(f"an interrupted regrade resumed: {count} submission{'s' if count != 1 else ''} "
+                                    f"{'were' if count != 1 else 'was'} left to grade again")
         todo = [e for e in readable if keys[e.student_id] in left or not book.is_graded(keys[e.student_id])]
         summary.reused = len(readable) - len(todo)
         presented, shown = _presented(book), _presentation(pictures, course)
