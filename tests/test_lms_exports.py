@@ -159,3 +159,22 @@ def test_a_late_rule_over_an_upload_without_times_says_it_applied_nothing():
     timed = [dict(student("bo", "bo"), submitted_at="2026-12-03T10:00:00+00:00")]
     grades, warnings = exports.compute_grades(timed, RAW, course)
     assert not any("no submission times" in w for w in warnings) and grades[0].late_penalty > 0
+
+
+def test_rows_an_lms_cannot_match_are_counted_in_a_warning(tmp_path):
+    """Audit of 2026-12-07: a class of plain folders gave a Canvas import whose ID, SIS User ID and SIS Login ID were
+    empty, and a Canvas download asked for Moodle's worksheet too gave empty identifiers -- rows the LMS cannot
+    match, without a word. The batch says how many, and what would give them."""
+    folders = [student("alice", "alice", source="folder"), student("bob", "bob", 4.0, source="folder")]
+    grades, _ = exports.compute_grades(folders, RAW, CourseConfig(assignment="Lab 7"), (), exports.Roster())
+    [canvas] = exports.lms_warnings(grades, CourseConfig(assignment="Lab 7"))
+    assert canvas.startswith("canvas_import.csv: 2 of 2 graded rows have no Canvas ID") and "--roster" in canvas
+    # the class's own Canvas export as the roster: matched by login, every row has its ids
+    rows = roster(tmp_path, CANVAS_EXPORT.replace("bkim", "alice").replace("alee", "bob"))
+    grades, _ = exports.compute_grades(folders, RAW, CourseConfig(assignment="Lab 7"), (), rows)
+    assert exports.lms_warnings(grades, CourseConfig(assignment="Lab 7"), rows.columns) == []
+    # a Canvas download (its user ids) asked for Moodle's worksheet too: no identifier for Moodle
+    both = CourseConfig(assignment="Lab 7", lms_exports=["canvas", "moodle"])
+    grades, _ = exports.compute_grades(CLASS, RAW, both, (), exports.Roster())
+    [moodle] = exports.lms_warnings(grades, both)
+    assert moodle.startswith("moodle_import.csv: 3 of 3 graded rows have no Identifier")

@@ -645,13 +645,8 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
     column, _ = canvas_assignment_column(course, roster_columns)
     possible = max_total(exercises, course, report_max)
     rows = [CANVAS_HEADER + [column], ["Points Possible", "", "", "", "", _fmt(possible)]]
-    for g, member in _members(grades):
-        lms, r = g.student.get("lms", {}), g.roster
-        rows.append([r.get("name") or member.get("name") or g.student["display_name"],
-                     r.get("canvas_user_id") or lms.get("canvas_user_id", ""),
-                     r.get("sid") or member.get("sid", ""), r.get("login") or member.get("email", ""),
-                     r.get("section", ""), "EX" if g.excused else _fmt(g.total)])   # Canvas's "excused"
-    if not course.lms_exports or "canvas" in course.lms_exports:
+    rows += [_canvas_row(g, member) for g, member in _members(grades)]
+    if _canvas_wanted(course):
         files.append(write_csv(canvas, rows))
     else:
         canvas.unlink(missing_ok=True)
@@ -659,13 +654,7 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
     moodle = out / "moodle_import.csv"
     if not _moodle_wanted(grades, course, roster_columns):
         moodle.unlink(missing_ok=True)   # a worksheet from an earlier run would be taken for this one's
-    rows = [MOODLE_HEADER]
-    for g, member in _members(grades):
-        lms, r = g.student.get("lms", {}), g.roster
-        participant = lms.get("moodle_participant_id")
-        rows.append([r.get("identifier") or (f"Participant {participant}" if participant else ""),
-                     r.get("name") or member.get("name") or g.student["display_name"],
-                     r.get("email") or member.get("email", ""), _fmt(g.total)])
+    rows = [MOODLE_HEADER] + [_moodle_row(g, member) for g, member in _members(grades)]
     if _moodle_wanted(grades, course, roster_columns):
         files.append(write_csv(moodle, rows))
 
@@ -678,6 +667,49 @@ def write_csvs(out, grades: list[StudentGrade], exercises, course: CourseConfig,
                 rows.append([g.student["student_id"], g.student["display_name"], "submitted, not on the roster"])
         files.append(write_csv(out / "roster_unmatched.csv", rows))
     return files
+
+
+def _canvas_row(g: StudentGrade, member: dict) -> list[str]:
+    """One student's row of Canvas's import: name, Canvas user id, SIS user id, SIS login, section, grade."""
+    lms, r = g.student.get("lms", {}), g.roster
+    return [r.get("name") or member.get("name") or g.student["display_name"],
+            r.get("canvas_user_id") or lms.get("canvas_user_id", ""),
+            r.get("sid") or member.get("sid", ""), r.get("login") or member.get("email", ""),
+            r.get("section", ""), "EX" if g.excused else _fmt(g.total)]   # Canvas's "excused"
+
+
+def _moodle_row(g: StudentGrade, member: dict) -> list[str]:
+    """One student's row of Moodle's grading worksheet: identifier, name, e-mail, grade."""
+    lms, r = g.student.get("lms", {}), g.roster
+    participant = lms.get("moodle_participant_id")
+    return [r.get("identifier") or (f"Participant {participant}" if participant else ""),
+            r.get("name") or member.get("name") or g.student["display_name"],
+            r.get("email") or member.get("email", ""), _fmt(g.total)]
+
+
+def lms_warnings(grades: list[StudentGrade], course: CourseConfig, roster_columns=()) -> list[str]:
+    """What the LMS imports written cannot do: rows with a grade and nothing the LMS matches a row by (Canvas: its
+    user id, SIS user id or login; Moodle: the worksheet's identifier) -- a class handed as plain folders names no
+    LMS user, and Moodle's identifiers come only from a Moodle download or roster."""
+    said = []
+    graded = [(g, member) for g, member in _members(grades) if g.total is not None or g.excused]
+    if _canvas_wanted(course):
+        blind = [g for g, member in graded if not any(_canvas_row(g, member)[1:4])]
+        if blind:
+            said.append(f"canvas_import.csv: {len(blind)} of {len(graded)} graded rows have no Canvas ID, SIS User "
+                        "ID or SIS Login ID, which Canvas matches students by (a folder of submissions names no "
+                        "Canvas user): give --roster with the class's Canvas roster or gradebook export")
+    if _moodle_wanted(grades, course, roster_columns):
+        blind = [g for g, member in graded if not _moodle_row(g, member)[0]]
+        if blind:
+            said.append(f"moodle_import.csv: {len(blind)} of {len(graded)} graded rows have no Identifier "
+                        "(\"Participant N\"), which Moodle's worksheet import matches students by: grade Moodle's "
+                        "download, or give --roster with Moodle's grading worksheet")
+    return said
+
+
+def _canvas_wanted(course: CourseConfig) -> bool:
+    return not course.lms_exports or "canvas" in course.lms_exports
 
 
 def _moodle_wanted(grades, course: CourseConfig, roster_columns) -> bool:

@@ -303,6 +303,7 @@ def class_grades(book: Gradebook, course: CourseConfig | None = None) -> ClassGr
     rubric = book.rubric()
     grades, warnings = exports.compute_grades(students, exercises, course, overrides, roster,
                                               rubric=rubric, reviews=book.reviews(), ledger=exports.read_ledger(course))
+    warnings += exports.lms_warnings(grades, course, roster.columns)
     return ClassGrades(students, grades, exercises, course, roster, warnings,
                        exports.report_maxima(rubric, exercises), changes.recorded(book)[1],
                        changes.last_changes(book))
