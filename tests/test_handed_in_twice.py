@@ -68,6 +68,12 @@ def hand_in(folder: Path, files: dict[str, str], older: dict[str, float] | None 
 CASES = {
     "notebook beside the skeleton": (
         {PY: SKEL, NB: notebook(REF)}, {NB: HOUR}, NB, PY, "implements none of its"),
+    # (the reference's helper counted apart: "none of its 11 functions" beside "12 functions" read as a miscount,
+    # audit of 2026-12-07)
+    "notebook with a helper beside the skeleton": (
+        {PY: SKEL, NB: notebook(REF)}, {NB: HOUR}, NB, PY,
+        f"{PY} implements none of its 11 functions yet (each only raises NotImplementedError) and {NB} implements "
+        "11 of them (and 1 function of its own)"),
     "the .py written, a skeleton notebook beside it": (
         {PY: REF, NB: notebook(SKEL)}, {PY: HOUR}, PY, NB, "implements none of its"),
     "two notebooks in two folders": (

@@ -85,6 +85,8 @@ class Progress:
     implemented: int      # top-level functions defined and not stubs
     stubs: int            # top-level functions that only raise NotImplementedError
     unreadable: str = ""  # why the file could not be read ("is not UTF-8 text"), "" when it could
+    implemented_names: frozenset = frozenset()   # the names of both (where the file parses)
+    stub_names: frozenset = frozenset()
 
     def words(self) -> str:
         """What the file implements, as a predicate: ``"implements 6 functions"``, ``"implements
@@ -110,7 +112,7 @@ def progress(text: str) -> Progress:
         return Progress(sum(line.startswith(("def ", "async def ")) for line in text.splitlines()), 0)
     stubs = stub_names(tree, text)
     defined = {node.name for node in tree.body if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))}
-    return Progress(len(defined - stubs), len(stubs))
+    return Progress(len(defined - stubs), len(stubs), "", frozenset(defined - stubs), frozenset(stubs))
 
 
 # ------------------------------------------------------------------ choosing the file to grade
@@ -168,6 +170,14 @@ def _why(other: Candidate, best: Candidate) -> str:
     if mine.unreadable:
         return f"{other.shown} {mine.unreadable}"
     if (mine.implemented, mine.stubs) != (theirs.implemented, theirs.stubs):
+        # (a skeleton beside the work: the work's count of the skeleton's own functions, its helpers apart --
+        # "none of its 11 functions" beside "12 functions" reads as a miscount)
+        skeleton = mine.stub_names and not mine.implemented and theirs.implemented_names & mine.stub_names
+        helpers = len(theirs.implemented_names - mine.stub_names)
+        if skeleton and helpers and not theirs.stubs:
+            done = len(theirs.implemented_names & mine.stub_names)
+            return (f"{other.shown} {mine.words()} and {best.shown} implements {done} of them "
+                    f"(and {helpers} function{'s' * (helpers != 1)} of its own)")
         return f"{other.shown} {mine.words()} and {best.shown} {theirs.words()}"
     both = f"both {theirs.words().replace('implements', 'implement', 1).replace('defines', 'define', 1)}"
     if other.modified != best.modified:
