@@ -83,3 +83,11 @@ def test_a_page_never_shows_a_final_grade_holding_withheld_hidden_points(tmp_pat
     assert "final grade: shown when the hidden checks are released" in page
     assert grades["leeann-3456"]["Total"] not in headline(out, "leeann-3456").split(" / ")[0]
     assert "final grade" not in headline(out, "smithjohn-1234")
+    # the headline beside adjustments that change the grade says what it counts (audit of 2026-12-07: "65 / 65
+    # points" beside "lab07.ex2 set to 1")
+    assert "(the public checks; your final grade, with the adjustments below, is shown when the hidden checks are " \
+           "released)" in headline(out, "leeann-3456")
+    assert "the public checks" not in headline(out, "smithjohn-1234")   # nothing adjusted: the plain total
+    from autograder.instructor.batch.run import write_exports   # every later run brings the page up to date
+    write_exports(out)
+    assert (out / "leeann-3456" / "feedback.html").read_text().count("the public checks;") == 1

@@ -819,7 +819,20 @@ def student_page(page: str, grade: StudentGrade, possible: float, course: Course
     page = with_reviews(page, grade)
     if show_final:   # the headline is the final grade (never while it holds withheld hidden points)
         page = with_final_grade(page, grade, possible)
+    else:
+        # (the public checks' points, as the page tells them, beside adjustments that change the grade: said what
+        # the headline counts -- its numbers left as they are, any other could hold hidden points; a page is
+        # brought up to date run after run: the note is made anew each time)
+        start, stop = page.find(HEADLINE), page.find(HEADLINE_END)
+        if 0 <= start < stop:
+            told = page[start + len(HEADLINE):stop].split(f" {WITHHELD_NOTE}")[0]
+            adjusted = grade.adjustments or grade.late_penalty or grade.reviews
+            page = _between(page, HEADLINE, HEADLINE_END, f"{told} {WITHHELD_NOTE}" if adjusted else told)
     return page
+
+
+WITHHELD_NOTE = ('<span class="muted withheld" style="font-size: 1rem; font-weight: normal">(the public checks; your '
+                 "final grade, with the adjustments below, is shown when the hidden checks are released)</span>")
 
 
 CHANGED, CHANGED_END = "<!-- changed -->", "<!-- /changed -->"
