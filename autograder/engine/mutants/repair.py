@@ -494,6 +494,7 @@ class _Student:
         self._statements: dict = {}   # def -> line -> the first line of the statement holding it
         self._blocks: dict = {}       # def -> a body statement's first line -> the first line of its if or loop
         self._walked: dict = {}      # def name -> (its nodes in ast.walk order, their parents)
+        self._own_sized: dict = {}   # def name -> its comparisons of a value with its own size (as written)
         self._shapes: dict = {}      # id of a statement (kept alive in _walked) -> its code with names masked
         self._places: dict = {}      # id of a node (kept alive in _walked) -> (its statement, its position there)
         self._zipped: dict = {}      # def name -> the (name, name) pairs of its loops over zip
@@ -1077,8 +1078,11 @@ class _Student:
             mutated = _defs(mutated_defs(self.tree, mutant.edits, self.text)).get(where)
         except (ValueError, SyntaxError):
             return False
-        own = _defs(self.tree).get(where)
-        return mutated is not None and own is not None and bool(own_sized(mutated) - own_sized(own))
+        if mutated is None or where not in self._defs:
+            return False
+        if where not in self._own_sized:   # (the student's def is the same for each of its hundreds of changes)
+            self._own_sized[where] = own_sized(self._defs[where])
+        return bool(own_sized(mutated) - self._own_sized[where])
 
     def bypasses(self, mutant) -> bool:
         """Whether the mutant puts another name where the only reading of a value the def computes was
@@ -3774,6 +3778,7 @@ class _Variants:
         self.forbid = () if getattr(trial, "forbidden_allowed", False) else \
             tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
+        self._sources: dict = {}     # change -> the source of its defs (see source)
         self.crossing: set = set()   # the variants on the other side of a threshold (see confirmed)
         self.beyond: set = set()     # the variants with the check's whole numbers and 0/1 masks given otherwise
         self.untaken: set | None = None   # of which those the student's own code does not answer
@@ -3809,11 +3814,14 @@ class _Variants:
         self.close: set = set()
 
     def source(self, mutant) -> str | None:
-        """The changed defs of the student's module (None when the change cannot be written)."""
-        try:
-            return ast.unparse(mutated_defs(self.student.tree, mutant.edits, self.student.text))
-        except (ValueError, SyntaxError, RecursionError):
-            return None
+        """The changed defs of the student's module (None when the change cannot be written); written
+        once per change (run on the failing inputs, then on the confirmation inputs)."""
+        if mutant.key not in self._sources:
+            try:
+                self._sources[mutant.key] = ast.unparse(mutated_defs(self.student.tree, mutant.edits, self.student.text))
+            except (ValueError, SyntaxError, RecursionError):
+                self._sources[mutant.key] = None
+        return self._sources[mutant.key]
 
     def answers(self, mutant, indices, every) -> list | None:
         """The variant's answers on ``every[i]`` for ``i`` in ``indices`` (None when it did not answer;
