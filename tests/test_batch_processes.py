@@ -362,3 +362,39 @@ def test_cgroups_left_by_a_killed_grading_process_are_removed_by_the_next():
     finally:
         left.remove()
         alive.remove()
+
+
+# ------------------------------------------------------------------ a grading that never ends
+def grade_or_hang(*arguments, stuck: str, notes: str):
+    """``grade_files(*arguments)``, but the grading of ``stuck`` never ends, in the grader's own code (as a
+    reading that loops without end would), each attempt noted."""
+    name = inspect.signature(grade_files).bind(*arguments).arguments["name"]
+    if name == stuck:
+        with open(Path(notes) / name, "a") as attempts:
+            attempts.write("attempt\n")
+        while True:
+            sum(range(10_000))
+    return grade_files(*arguments)
+
+
+def test_a_grading_stuck_in_the_graders_own_code_is_stopped_and_the_class_goes_on(tmp_path, monkeypatch):
+    """The sandbox bounds the student's code and each grading stops at its own deadline, but a fault of the
+    grader's (2026-12-07: a walk of syntax trees that wrapped what it walked, without end) ran on in its grading
+    process, and the batch waited for it forever. The pool stops a grading process still on one submission
+    twice the submission budget and two minutes after it took it; that submission is failed, once (run again, it
+    would hang again), told as the grader's fault; the others are graded."""
+    class_folder = tmp_path / "class"
+    for name in ("ann", "bo", "stuck"):
+        write(class_folder / name / f"{MODULE}.py", reference())
+    notes = tmp_path / "notes"
+    notes.mkdir()
+    monkeypatch.setattr(run, "grade_files", functools.partial(grade_or_hang, stuck="stuck", notes=str(notes)))
+    assert run.overdue_after({"submission_budget": 240}) == 600.0   # the course's default budget: ten minutes
+    monkeypatch.setattr(run, "overdue_after", lambda rules: 8.0)
+    started = time.monotonic()
+    summary = run_batch(class_folder, tmp_path / "out", course=COURSE, workers=2)
+    assert time.monotonic() - started < 8.0 + processes._STOP_SECONDS + 60
+    [failed] = summary.failed
+    assert failed.startswith("stuck: the grading process was stopped after 8 s, long past the grading's own deadline")
+    assert "a fault of the grader's, not of this submission's code" in failed
+    assert summary.graded == 2 and (notes / "stuck").read_text().count("attempt") == 1

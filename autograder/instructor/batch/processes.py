@@ -90,9 +90,12 @@ def _read_at_startup(environment) -> dict:
 # ------------------------------------------------------------------ the pool
 @dataclass(frozen=True)
 class ProcessDeath:
-    """The outcome of a task whose process died while running it: ``how`` it died."""
+    """The outcome of a task whose process died while running it: ``how`` it died; ``overdue``:
+    it was stopped, the task still running long after the grading's own deadline (a fault of
+    the grader's, which running it again would meet again)."""
 
     how: str
+    overdue: bool = False
 
 
 class GradingProcessesFailed(RuntimeError):
@@ -107,6 +110,8 @@ class _Member:
         self.key: str | None = None
         self.arguments: tuple = ()
         self.started = False   # it said it started the task: its death is the task's
+        self.handed = 0.0      # when it was handed the task (time.monotonic())
+        self.overdue = False   # stopped for running past the pool's task_seconds
 
 
 class GradingPool:
@@ -128,10 +133,15 @@ class GradingPool:
     ...         ...
     """
 
-    def __init__(self, processes: int, task: Callable, context=None):
+    def __init__(self, processes: int, task: Callable, context=None, task_seconds: float | None = None):
         if processes < 1:
             raise ValueError(f"a pool needs at least one process, not {processes}")
         self._size = processes
+        # A backstop, not a budget: a grading ends at its own deadline, and the grader's code
+        # after it (judging, pictures, the page) is bounded too; a task still running this long
+        # after it was handed out is stuck in the grader (a loop that never ends, a lock never
+        # released) and would hold the batch forever. None: no bound.
+        self._task_seconds = task_seconds
         self._context = context or grading_processes()
         self._folder = batch_folder()
         self._start_arguments = (task, dict(os.environ), str(self._folder), os.getpid())
@@ -163,10 +173,30 @@ class GradingPool:
         while self._queue or any(m.key is not None for m in self._members):
             self._hand_out()
             busy = [m for m in self._members if m.key is not None]
-            ready = set(connections.wait([m.connection for m in busy] + [m.process.sentinel for m in busy]))
+            ready = set(connections.wait([m.connection for m in busy] + [m.process.sentinel for m in busy],
+                                         self._wait_seconds(busy)))
             for member in busy:
                 if member.connection in ready or member.process.sentinel in ready:
                     yield from self._receive(member)
+                elif self._task_seconds is not None and time.monotonic() - member.handed > self._task_seconds:
+                    member.overdue = True
+                    self._stop_member(member)
+                    yield from self._bury(member)
+
+    def _wait_seconds(self, busy: list) -> float | None:
+        """How long the pool may wait for a message before a busy process is overdue (None: no bound)."""
+        if self._task_seconds is None or not busy:
+            return None
+        return max(0.0, min(m.handed for m in busy) + self._task_seconds - time.monotonic())
+
+    @staticmethod
+    def _stop_member(member: "_Member") -> None:
+        """SIGTERM (it stops its sandbox's worker and removes its files), SIGKILL if still there after
+        :data:`_STOP_SECONDS`."""
+        member.process.terminate()
+        member.process.join(_STOP_SECONDS)
+        if member.process.exitcode is None:
+            member.process.kill()
 
     def close(self) -> None:
         """Let the processes end (each when it sees the pool closed); do not wait for them."""
@@ -202,7 +232,7 @@ class GradingPool:
                     return
                 idle = self._start()
             idle.key, idle.arguments = self._queue.popleft()
-            idle.started = False
+            idle.started, idle.handed = False, time.monotonic()
             try:
                 idle.connection.send((idle.key, idle.arguments))
             except OSError:
@@ -246,6 +276,11 @@ class GradingPool:
         self._members.remove(member)
         how = _how_it_ended(member.process.exitcode)
         if member.key is None:
+            return
+        if member.overdue:
+            yield member.key, ProcessDeath(f"stopped after {self._task_seconds:g} s, long past the grading's own "
+                                           "deadline: the grader never finished it (a fault of the grader's, not of "
+                                           "this submission's code)", overdue=True)
             return
         if member.started:
             yield member.key, ProcessDeath(how)

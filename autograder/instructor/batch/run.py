@@ -389,6 +389,14 @@ def _only_writer(out: Path):
         yield
 
 
+def overdue_after(rules: dict | None) -> float:
+    """Seconds after which a grading process still on one submission is stopped: twice the course's
+    submission budget and two minutes (the grading stops its own work at that budget; what follows it --
+    the page, its pictures -- is bounded too)."""
+    budget = (rules or {}).get("submission_budget") or CourseConfig().submission_budget
+    return 2 * float(budget) + 120.0
+
+
 def _grade_locally(todo: list[Entry], arguments, finished, workers: int, rules: dict | None = None,
                    running: Callable[[list[str]], None] | None = None) -> None:
     """A pool of grading processes, the cores shared out among them. A process that dies is
@@ -402,14 +410,16 @@ def _grade_locally(todo: list[Entry], arguments, finished, workers: int, rules: 
     deaths: dict[str, list[str]] = {}
     # Every grading has landed (or the batch stops): the processes end while the exports
     # are written; on Ctrl-C or SIGTERM they stop their gradings before this returns.
-    with GradingPool(workers, grade_files) as pool:
+    with GradingPool(workers, grade_files, task_seconds=overdue_after(rules)) as pool:
         for entry in todo:
             pool.submit(entry.student_id, (entry.files, *arguments, entry.student_id, threads, rules))
         for student_id, outcome in pool.outcomes():
             entry = entries[student_id]
             if running:
                 running(pool.running)
-            if isinstance(outcome, ProcessDeath):
+            if isinstance(outcome, ProcessDeath) and outcome.overdue:   # (run again, it would hang again)
+                outcome = {"error": f"the grading process was {outcome.how}"}
+            elif isinstance(outcome, ProcessDeath):
                 deaths.setdefault(student_id, []).append(outcome.how)
                 if len(deaths[student_id]) < POOL_ATTEMPTS:
                     pool.submit(student_id, (entry.files, *arguments, student_id, threads, rules))
