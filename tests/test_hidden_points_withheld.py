@@ -96,3 +96,13 @@ def test_the_checks_passed_count_leaves_the_hidden_checks_apart_where_the_score_
     console = Console(width=200, record=True)
     render(result, console, details=False)   # (the instructor's view: the hidden points are in the score)
     assert "2 / 3" in console.export_text()
+
+
+def test_a_late_students_page_with_no_public_point_tells_nothing_of_the_hidden_ones():
+    """The property's corner: no public point earned, the hidden checks failed with partial credit or without. A
+    late row (and the headline's note beside it) shown only where the penalty, a share of all points earned, is not
+    0 told that some hidden point was earned. The late rule is told wherever days are late, whatever its points."""
+    course = CourseConfig(late_penalty={"per_day": 10}, hidden_points_visible=False)
+    nothing = grading([(0.0, 2.0)], [(False, 4.0, 0.0)])
+    partial = grading([(0.0, 2.0)], [(False, 4.0, 0.5)])
+    assert student_outputs(nothing, course, True, []) == student_outputs(partial, course, True, [])

@@ -462,8 +462,8 @@ def compute_grades(students: list[dict], exercises, course: CourseConfig,
             percent = min(course.late_penalty.get("max", 100), course.late_penalty.get("per_day", 0) * days)
             earned = grade.earned
             grade.late_penalty = round(earned * percent / 100, 2)
-            if grade.late_penalty:
-                grade.adjustments.append(Adjustment("late", f"-{grade.late_penalty:g}",
+            if percent:   # (told wherever days are late: shown only where it is not 0, it would tell points earned)
+                grade.adjustments.append(Adjustment("late", f"-{grade.late_penalty:g}" if grade.late_penalty else "0",
                                                     f"{days} day(s) late: {percent:g}% of the points earned"))
     if course.late_penalty and any(g.graded for g in grades) \
             and not any(g.student.get("submitted_at") or g.student.get("late") for g in grades):
@@ -780,7 +780,7 @@ def shows_final(grade: StudentGrade, course: CourseConfig) -> bool:
 def adjustments_html(grade: StudentGrade, possible: float, show_final: bool = True) -> str:
     """The block shown on a student's page: every adjustment and the final grade (or, while
     hidden checks' points are withheld, when it will be shown), or nothing."""
-    if not grade.adjustments and not grade.late_penalty and not grade.reviews:
+    if not grade.adjustments and not grade.reviews:   # (a late penalty is an adjustment)
         return f"{BEGIN}{END}"
     # The reports' points are in the final grade, not in the checks' total the headline shows
     # while hidden points are withheld: listed here, each beside the others that make the grade.
@@ -826,7 +826,7 @@ def student_page(page: str, grade: StudentGrade, possible: float, course: Course
         start, stop = page.find(HEADLINE), page.find(HEADLINE_END)
         if 0 <= start < stop:
             told = page[start + len(HEADLINE):stop].split(f" {WITHHELD_NOTE}")[0]
-            adjusted = grade.adjustments or grade.late_penalty or grade.reviews
+            adjusted = grade.adjustments or grade.reviews   # (never the penalty's points: they count hidden ones)
             page = _between(page, HEADLINE, HEADLINE_END, f"{told} {WITHHELD_NOTE}" if adjusted else told)
     return page
 
