@@ -97,7 +97,9 @@ def test_a_forbid_naming_nothing_is_refused_by_every_command(tmp_path, forbid, s
 @pytest.mark.parametrize("course, said", [
     ({"select": ["lab77"]}, "select: nothing to grade matches 'lab77'"),
     ({"select": ["lab07", "lab07.ex9"]}, "select: nothing to grade matches 'lab07.ex9'"),
-    ({"points": {"lab07": -5}}, "points must be 0 or more: 'lab07' is given -5"),
+    ({"points": {"lab07": -5}}, "points must be a number, 0 or more: 'lab07' is given -5"),
+    ({"points": {"lab07": float("nan")}}, "points must be a number, 0 or more: 'lab07' is given nan"),
+    ({"points": {"lab07.ex2": float("inf")}}, "points must be a number, 0 or more: 'lab07.ex2' is given inf"),
     ({"points": {"lab07": True}}, "points must map"),
     ({"call_timeout": 0}, "call_timeout must be a positive number of seconds"),
 ])

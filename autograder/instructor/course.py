@@ -227,10 +227,10 @@ class CourseConfig:
                 isinstance(k, str) and isinstance(v, (int, float)) and not isinstance(v, bool)
                 for k, v in self.points.items())):
             raise CourseConfigError("points must map 'lab07' or 'lab07.ex2' to a number of points")
-        negative = [k for k, v in self.points.items() if v < 0]
-        if negative:
-            raise CourseConfigError(f"points must be 0 or more: {negative[0]!r} is given "
-                                    f"{self.points[negative[0]]!r}")
+        wrong = [k for k, v in self.points.items() if not (math.isfinite(v) and v >= 0)]   # (JSON reads NaN too)
+        if wrong:
+            raise CourseConfigError(f"points must be a number, 0 or more: {wrong[0]!r} is given "
+                                    f"{self.points[wrong[0]]!r}")
         self._check_late_penalty()
         self._check_extensions()
         if not isinstance(self.inputs_secret, str):

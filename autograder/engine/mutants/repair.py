@@ -3778,7 +3778,6 @@ class _Variants:
         self.forbid = () if getattr(trial, "forbidden_allowed", False) else \
             tuple(trial.lab.forbidden.get(function, ())) + tuple(trial.forbid.get(function, ()))
         self.confirmations = None   # (inputs and variants, the reference's answers, usable variants)
-        self._sources: dict = {}     # change -> the source of its defs (see source)
         self.crossing: set = set()   # the variants on the other side of a threshold (see confirmed)
         self.beyond: set = set()     # the variants with the check's whole numbers and 0/1 masks given otherwise
         self.untaken: set | None = None   # of which those the student's own code does not answer
@@ -3814,14 +3813,13 @@ class _Variants:
         self.close: set = set()
 
     def source(self, mutant) -> str | None:
-        """The changed defs of the student's module (None when the change cannot be written); written
-        once per change (run on the failing inputs, then on the confirmation inputs)."""
-        if mutant.key not in self._sources:
-            try:
-                self._sources[mutant.key] = ast.unparse(mutated_defs(self.student.tree, mutant.edits, self.student.text))
-            except (ValueError, SyntaxError, RecursionError):
-                self._sources[mutant.key] = None
-        return self._sources[mutant.key]
+        """The changed defs of the student's module (None when the change cannot be written). Written
+        anew each time: a change runs again only when confirmed (3% of the runs measured), and keeping
+        every change's source would hold a large def's text thousands of times."""
+        try:
+            return ast.unparse(mutated_defs(self.student.tree, mutant.edits, self.student.text))
+        except (ValueError, SyntaxError, RecursionError):
+            return None
 
     def answers(self, mutant, indices, every) -> list | None:
         """The variant's answers on ``every[i]`` for ``i`` in ``indices`` (None when it did not answer;
