@@ -254,7 +254,7 @@ def _readable(mistake: str, message: str) -> str:
     return mistake
 
 
-_RAISED_ON = re.compile(r"\s*\(raised on .*\)$")   # the input a relayed exception came from (lab07.py, lab08.py)
+_RAISED_ON = " (raised on "   # the input a relayed exception came from, at the sentence's end (lab07.py, lab08.py)
 
 
 def first_sentence(message: str) -> str:
@@ -262,7 +262,9 @@ def first_sentence(message: str) -> str:
     differ only in numbers, or one exception relayed by several checks, each on its own input, group together."""
     line = message.strip().splitlines()[0]
     sentence = re.split(r"(?<=[.!?])\s", line, maxsplit=1)[0].rstrip(".:; ")
-    return _NUMBER.sub("#", _RAISED_ON.sub("", sentence))
+    if sentence.endswith(")") and _RAISED_ON in sentence:   # (string search: a student's text read once)
+        sentence = sentence[:sentence.rfind(_RAISED_ON)]
+    return _NUMBER.sub("#", sentence)
 
 
 def _attempted(exercise: dict) -> bool:
