@@ -73,3 +73,18 @@ def test_copy_tree_copies_lists_of_nodes_and_other_values_deeply():
     assert all(a is not b for a, b in zip(copied, nodes))
     value = {"a": [1, 2]}
     assert copy_tree(value) == value and copy_tree(value)["a"] is not value["a"]
+
+
+def test_the_caches_a_reader_keeps_on_a_node_are_copied_with_the_copys_nodes():
+    """Readers keep caches on a def (reading._nodes' ``_walked``, the operators' ``_uses_of``...), holding nodes of
+    its tree: a copy shared with the original would read the original's nodes, unchanged by the copy's mutation.
+    As deepcopy does, the copy's cache holds the copy's own nodes."""
+    from autograder.loading.reading import _nodes
+
+    fn = ast.parse("def f(a):\n    b = a + 1\n    return b\n").body[0]
+    _nodes(fn)
+    fn._scope = {"names": ["a", "b"]}
+    copied = copy_tree(fn)
+    assert [id(n) for n in copied._walked] == [id(n) for n in ast.walk(copied)]
+    assert copied._scope == fn._scope and copied._scope is not fn._scope
+    assert [id(n) for n in copy_tree([fn])[0]._walked] != [id(n) for n in fn._walked]

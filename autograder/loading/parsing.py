@@ -99,23 +99,41 @@ def walk(node: ast.AST):
 def copy_tree(value):
     """A copy of an AST node or a list of them, as :func:`copy.deepcopy` makes it, in a third of
     the time: every node with fields or positions is new; the field-less markers (``Load``,
-    ``Add``, ...) are shared, as :func:`ast.parse` shares them. Any other value is deep-copied."""
+    ``Add``, ...) are shared, as :func:`ast.parse` shares them. What else a node holds -- the
+    readers' caches kept on it (``_walked``, ``_uses_of``: nodes of its tree) -- is deep-copied
+    as deepcopy copies it, the tree's nodes in it standing for their copies. Any other value is
+    deep-copied."""
+    if not (isinstance(value, ast.AST) or value.__class__ is list):
+        return copy.deepcopy(value)
+    memo: dict = {}     # id of an original node -> its copy (deepcopy's memo, for the extras below)
+    extras: list = []   # (copy, attribute, original value) of what is neither a field nor a position
     if isinstance(value, ast.AST):
-        return _copied_node(value)
-    if value.__class__ is list:
-        return [_copied_node(item) if isinstance(item, ast.AST) else copy.deepcopy(item) for item in value]
-    return copy.deepcopy(value)
+        copied = _copied_node(value, memo, extras)
+    else:
+        copied = [_copied_node(item, memo, extras) if isinstance(item, ast.AST) else copy.deepcopy(item, memo)
+                  for item in value]
+    for new, name, kept in extras:
+        new.__dict__[name] = copy.deepcopy(kept, memo)
+    return copied
 
 
-def _copied_node(node: ast.AST) -> ast.AST:
+_SHARED = (str, int, float, complex, bytes, bool, type(None), type(Ellipsis))   # immutable field values
+
+
+def _copied_node(node: ast.AST, memo: dict, extras: list) -> ast.AST:
     if not node._fields and not node.__dict__:
+        memo[id(node)] = node
         return node   # a context or operator marker: immutable in practice, shared by the parser
     new = node.__class__.__new__(node.__class__)
+    memo[id(node)] = new
     attributes = new.__dict__
     for name, value in node.__dict__.items():
         if isinstance(value, ast.AST):
-            value = _copied_node(value)
+            value = _copied_node(value, memo, extras)
         elif value.__class__ is list:
-            value = [_copied_node(item) if isinstance(item, ast.AST) else item for item in value]
+            value = [_copied_node(item, memo, extras) if isinstance(item, ast.AST) else item for item in value]
+        elif not isinstance(value, _SHARED):
+            extras.append((new, name, value))
+            continue
         attributes[name] = value
     return new
