@@ -43,6 +43,7 @@ from ..loading.reading import Reading, findings_for, read_file
 from ..loading.submission import load_submission
 from ..sandbox import cache, confine
 from ..sandbox.supervisor import CallOutcome, Limits, Sandbox
+from .bounded import Runaway, bounded
 from .checks import Fail, StudentFailure, Trial, Verdict
 from .claims import measured, rewritten, without_guessed_cause
 from .forms import exception_form
@@ -456,7 +457,13 @@ def _reading(exercise: Exercise, submission) -> Reading | None:
     if submission is None:
         return None
     api = frozenset(name for ex in exercise.lab.exercises.values() for name in ex.signatures)
-    return read_file(submission.path / f"{exercise.lab.module}.py", api)
+    try:
+        with bounded(own_work_bound()):
+            return read_file(submission.path / f"{exercise.lab.module}.py", api)
+    except Runaway as runaway:   # (the checks are judged without it: nothing is read in their code)
+        logging.getLogger("autograder").error("grader error reading %s.py: stopped (%s); a fault of the grader's",
+                                              exercise.lab.module, runaway)
+        return None
 
 
 def _named_by_exception(verdict: Verdict, trial: Trial, traceback_text: str) -> Verdict:
@@ -761,7 +768,11 @@ def _zero_constant(sandbox, exercise: Exercise, results: list) -> None:
     from .constant import zero_constant
 
     try:
-        zero_constant(sandbox, exercise, results)
+        with bounded(own_work_bound()):
+            zero_constant(sandbox, exercise, results)
+    except Runaway as runaway:
+        logging.getLogger("autograder").error("telling constant answers in %s: stopped (%s); a fault of the "
+                                              "grader's", exercise.id, runaway)
     except Exception as exc:  # noqa: BLE001 - the verdicts stand without it
         logging.getLogger("autograder").exception("telling constant answers in %s: %s", exercise.id, exc)
 
@@ -1088,7 +1099,8 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
     started = time.perf_counter()
     tb, student_failure = "", ""
     try:
-        with np.errstate(all="ignore"):   # (the check's arithmetic on a student's NaN or inf: judged, not warned of)
+        # (the check's arithmetic on a student's NaN or inf: judged, not warned of)
+        with np.errstate(all="ignore"), bounded(own_work_bound()):
             verdict = check.func(trial)
         if verdict is None:
             verdict = Verdict(1.0)
@@ -1102,12 +1114,46 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         status = {"not_implemented": NOT_IMPLEMENTED, "grader_error": ERROR}.get(failure.outcome.kind, FAILED)
         tb, student_failure = failure.outcome.traceback, failure.outcome.kind
         if student_failure == "forbidden_call" and not check.hidden:
-            verdict = besides_forbidden(verdict, sandbox, check, rules, inputs)
+            try:
+                with bounded(own_work_bound()):
+                    verdict = besides_forbidden(verdict, sandbox, check, rules, inputs)
+            except Runaway as runaway:   # (the forbidden call is told as it was)
+                _log_runaway(check, "looking besides its forbidden call", runaway)
+    except Runaway as runaway:
+        verdict, status = Verdict(0.0, "grader error in this check (judging it ran far past its time or memory); "
+                                       "the rest was graded - please tell your instructor"), ERROR
+        _log_runaway(check, "judging it", runaway)
     except Exception as exc:  # noqa: BLE001 - a bug in the grader must not stop grading
         verdict, status = Verdict(0.0, f"grader error in this check ({type(exc).__name__}: {exc}); "
                                        "the rest was graded - please tell your instructor"), ERROR
         tb = ""
         _log_grader_error(check, exc)
+    try:
+        with bounded(own_work_bound()):
+            verdict = _explained(verdict, status, check, trial, reading, tb, student_failure)
+    except Runaway as runaway:   # the verdict stands as judged; a hint no reading has held against the code is not said
+        _log_runaway(check, "naming its failure", runaway)
+        verdict = replace(verdict, hint="")
+    artifacts = []
+    if pictures == "all" or (pictures == "failed" and status != PASSED):
+        artifacts = painter.draw(check, trial.artifacts) if painter else drawn(check, trial.artifacts)
+    fraction = verdict.fraction if isinstance(verdict.fraction, (int, float)) else 0.0
+    fraction = min(max(float(fraction), 0.0), 1.0) if fraction == fraction else 0.0
+    _collect(modified, trial)
+    return CheckResult(
+        name=check.name, score=round(fraction * check.points, 6), max_score=check.points,
+        status=status, message=str(verdict.message), hint=str(verdict.hint), hidden=check.hidden,
+        mistake=verdict.mistake, failure=student_failure, output="\n".join(trial.outputs)[:6000],
+        traceback=tb, artifacts=artifacts,
+        seconds=round(time.perf_counter() - started, 6),
+        student_seconds=round(trial.student_seconds, 6), inputs_digest=trial.given)
+
+
+def _explained(verdict: Verdict, status: str, check: Check, trial: Trial, reading: Reading | None, tb: str,
+               student_failure: str) -> Verdict:
+    """``verdict`` with its failure named where something names it (the inherited failures', a fresh start's,
+    the readings', the error model's, the repairs', the recordings'), and no hint that the student's code
+    contradicts. Each naming is a bonus: a failure of one is logged and the verdict stands without it."""
     _remember_check(check, trial)
     _remember_answers(check, trial)
     # a failure another of the student's functions causes is not this one's mistake, nor one an earlier
@@ -1161,19 +1207,7 @@ def run_check(sandbox: Sandbox, check: Check, pictures: str = "all",
         verdict = rewritten(verdict, trial)
     if status in (FAILED, PARTIAL):   # code relying on what only one OpenCV major does is told so
         verdict = with_version_note(verdict, trial)
-    artifacts = []
-    if pictures == "all" or (pictures == "failed" and status != PASSED):
-        artifacts = painter.draw(check, trial.artifacts) if painter else drawn(check, trial.artifacts)
-    fraction = verdict.fraction if isinstance(verdict.fraction, (int, float)) else 0.0
-    fraction = min(max(float(fraction), 0.0), 1.0) if fraction == fraction else 0.0
-    _collect(modified, trial)
-    return CheckResult(
-        name=check.name, score=round(fraction * check.points, 6), max_score=check.points,
-        status=status, message=str(verdict.message), hint=str(verdict.hint), hidden=check.hidden,
-        mistake=verdict.mistake, failure=student_failure, output="\n".join(trial.outputs)[:6000],
-        traceback=tb, artifacts=artifacts,
-        seconds=round(time.perf_counter() - started, 6),
-        student_seconds=round(trial.student_seconds, 6), inputs_digest=trial.given)
+    return verdict
 
 
 class Painter:
@@ -1222,13 +1256,17 @@ def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None, inputs=Non
     started = time.perf_counter()
     status, message, hint = PASSED, "", ""
     try:
-        with np.errstate(all="ignore"):
+        with np.errstate(all="ignore"), bounded(own_work_bound()):
             check.func(trial)
     except StudentFailure as failure:  # the graded checks report the student's failure
         if failure.outcome.kind == "not_implemented":
             status, message = NOT_IMPLEMENTED, failure.message
     except Fail:
         pass  # a tip is given with t.advise, not by failing
+    except Runaway as runaway:
+        status, message = ERROR, "grader error in this advice (it ran far past its time or memory); no points depend on it"
+        _log_runaway(check, "giving its advice", runaway)
+        trial.tips.clear()
     except Exception as exc:  # noqa: BLE001
         status, message = ERROR, f"grader error in this advice ({type(exc).__name__}: {exc}); no points depend on it"
         _log_grader_error(check, exc)
@@ -1250,6 +1288,24 @@ def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None, inputs=Non
 def _collect(modified, trial: Trial) -> None:
     if modified is not None:
         modified += [pair for pair in trial.modified_inputs if pair not in modified]
+
+
+def own_work_bound() -> float:
+    """The CPU seconds the grader's own work about one check (judging it, naming its failure) may take before it
+    is stopped as a runaway (:mod:`autograder.engine.bounded`): twice every naming time of a whole grading
+    together, at the machine's pace last measured, and a minute more -- no check's work legitimately takes the
+    grading's."""
+    from . import inherited, traced
+    from .mutants import naming
+
+    every = 2 * naming.GRADING_SECONDS + traced.GRADING_SECONDS + inherited.GRADING_SECONDS
+    return 2 * every * naming.last_pace() + 60
+
+
+def _log_runaway(check: Check, doing: str, runaway: Runaway) -> None:
+    logging.getLogger("autograder").error(
+        "grader error in %s: %s was stopped (%s); a fault of the grader's, not of the submission's code",
+        check.id, doing, runaway)
 
 
 def _log_grader_error(check: Check, exc: Exception):

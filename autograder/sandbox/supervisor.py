@@ -439,6 +439,7 @@ class Sandbox:
         self.billed_spans: list[tuple[float, float]] = []  # (start, end) of each billed time, perf_counter
         self.restarts = 0       # in the current exercise
         self._started = False   # the first start is not a restart
+        self._stopped_by_grader = False   # nor one after the grader interrupted a request (see _request)
         self._restart_refused = False
         self._budget: float | None = None
         self._deadline: float | None = None  # time.monotonic() at which the submission's time is up
@@ -864,7 +865,8 @@ class Sandbox:
         """Start the worker; a restart is billed its start-up time and capped."""
         if self._closed or self._interrupted:
             return CallOutcome(ok=False, kind="grader_error", message="grading was stopped")
-        restart = self._started
+        restart = self._started and not self._stopped_by_grader
+        self._stopped_by_grader = False
         self._restart_refused = restart and self.restarts >= self.limits.max_restarts
         if self._restart_refused:
             return CallOutcome(ok=False, kind="crashed",
@@ -951,6 +953,13 @@ class Sandbox:
             return self._abandon(CallOutcome(
                 ok=False, kind="protocol", seconds=time.perf_counter() - start,
                 message=f"{what}: the worker sent back something that is not a valid result ({exc})"))
+        except BaseException:
+            # Interrupted by the grader (Ctrl-C; its own work about a check stopped as a runaway, see
+            # autograder.engine.bounded): what is left on the pipe is unknown, so the next request gets a new
+            # worker, neither billed nor counted as a restart -- the student's code did nothing to earn it.
+            self._stop_worker()
+            self._stopped_by_grader = True
+            raise
         finally:
             self._watching = False
         outcome = self._outcome_from_reply(reply, what, request["id"], seconds)

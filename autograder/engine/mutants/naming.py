@@ -790,6 +790,11 @@ def _pace_work() -> None:
 _PACE: list = []   # [(time.monotonic() when measured, the pace)]: the last measure
 
 
+def last_pace() -> float:
+    """The pace :func:`machine_pace` measured last, without measuring it again (1.0 before any measure)."""
+    return _PACE[0][1] if _PACE else 1.0
+
+
 def machine_pace() -> float:
     """How many times longer this machine takes over the error model's work now than the one its budgets
     (:data:`CHECK_SECONDS`, :data:`GRADING_SECONDS`) were set on: a naming's clock counts its seconds
