@@ -72,9 +72,15 @@ def _stat(pid: int) -> tuple[int, str, int] | None:
 
 
 def _cmdline(pid: int) -> list[str]:
+    """``pid``'s command line; a process forked from the workers' template (whose command line it keeps) has
+    its name after it ("comm=ag-worker", see autograder/sandbox/zygote.py)."""
     try:
         with open(f"/proc/{pid}/cmdline", "rb") as f:
-            return [part.decode(errors="replace") for part in f.read().split(b"\0") if part]
+            command = [part.decode(errors="replace") for part in f.read().split(b"\0") if part]
+        if any(part.endswith("zygote.py") for part in command[:6]):
+            with open(f"/proc/{pid}/comm") as f:
+                command.append(f"comm={f.read().strip()}")
+        return command
     except OSError:
         return []
 
@@ -115,7 +121,9 @@ def wait_until_gone(processes_seen, seconds: float = 30) -> list[str]:
 
 
 def is_sandbox_worker(command: list[str]) -> bool:
-    return len(command) > 3 and command[1:3] == ["-I", "-B"] and command[3].endswith("worker.py")
+    """A worker started (``python -I -B worker.py``) or forked from the template (named ag-worker)."""
+    return (len(command) > 3 and command[1:3] == ["-I", "-B"] and command[3].endswith("worker.py")) \
+        or command[-1:] == ["comm=ag-worker"]
 
 
 # ------------------------------------------------------------------ grading processes that die

@@ -144,6 +144,17 @@ class Confinement:
         init = str(Path(__file__).with_name("namespace_init.py"))
         return unshare + ["--", INTERPRETER, "-I", "-S", init, spec, "--", *drop, "--", *argv]
 
+    def forked(self, view: View, hold) -> dict:
+        """What a worker forked from the warm template (``zygote.py``) needs to be confined as :meth:`wrap`
+        confines a started one: the operations building its root in ``hold``, the user it drops to (None:
+        it stays root of its namespaces, every capability dropped), and whether the grader, not being root,
+        maps itself to root of a user namespace first. Namespaced levels only."""
+        if self.level == "process-group":
+            raise ValueError("only the namespaced levels fork workers from the template")
+        own_user = self.level == "namespaces+user"
+        return {"ops": self._root_ops(str(Path(hold) / "root"), view), "map_root": os.geteuid() != 0,
+                "uid": self.uid if own_user else None, "gid": self.gid if own_user else None}
+
     def _root_ops(self, root: str, view: View | None) -> list:
         """The operations building the worker's root in ``root``, ending with the switch to it."""
         at = lambda p: f"{root}{p}"  # noqa: E731  (``p`` inside the new root)

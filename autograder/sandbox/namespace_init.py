@@ -100,26 +100,38 @@ def run(op):
         raise ValueError(f"unknown operation {kind!r}")
 
 
-def main(argv):
-    spec = json.loads(argv[1])
-    command = argv[argv.index("--") + 1:]
+def build(spec) -> None:
+    """Build the worker's file system from ``spec`` (mount namespace of its own, as root in it) and switch
+    to it, staying in the folder this process was in."""
     cwd = os.getcwd()
     mount(None, "/", None, MS_REC | MS_PRIVATE)  # nothing propagates back to the grader's mounts
     for op in spec:
         run(op)
     os.chdir(cwd)
+
+
+def reap(child) -> int:
+    """As PID 1, reap every orphan until ``child`` itself ends; its exit status (``128 + n`` when
+    killed by signal ``n``)."""
+    while True:
+        pid, status = os.wait()
+        if pid == child:
+            break
+    code = os.waitstatus_to_exitcode(status)
+    return 128 - code if code < 0 else code
+
+
+def main(argv):
+    spec = json.loads(argv[1])
+    command = argv[argv.index("--") + 1:]
+    build(spec)
     child = os.fork()
     if child == 0:
         try:
             os.execvp(command[0], command)
         finally:
             os._exit(127)
-    while True:  # as PID 1, reap every orphan until the worker itself ends
-        pid, status = os.wait()
-        if pid == child:
-            break
-    code = os.waitstatus_to_exitcode(status)
-    sys.exit(128 - code if code < 0 else code)
+    sys.exit(reap(child))
 
 
 if __name__ == "__main__":

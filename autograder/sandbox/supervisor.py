@@ -1,7 +1,8 @@
 """The grader's side of the sandbox: one worker process per submission.
 
 :class:`Sandbox` starts ``worker.py`` in a scratch directory with a scrubbed
-environment and resource limits, sends it one call at a time, and turns whatever
+environment and resource limits (at the namespaced levels forked from a warm template,
+:mod:`autograder.sandbox.template`), sends it one call at a time, and turns whatever
 happens -- a value, an exception, a hang, a crash, garbage on the pipe -- into a
 :class:`CallOutcome`. It never raises because of what the student's code did.
 A worker that hangs or dies is killed with its whole process group and started
@@ -45,7 +46,8 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any, Callable
 
-from . import confine, evidence
+from . import confine, evidence, template
+from .template import TemplateError
 from .files import copy_regular_files
 
 LENGTH = struct.Struct(">Q")
@@ -428,7 +430,9 @@ class Sandbox:
         self.submission_dir = self.scratch / "submission"
         self.output_path = self.scratch / "out" / "output.txt"
         self._lay_out_scratch()
-        self.proc: subprocess.Popen | None = None
+        if self.confinement.level != "process-group":   # (it imports NumPy and OpenCV while the grader goes on)
+            template.shared(confine.INTERPRETER, _scrubbed_environment(self.scratch))
+        self.proc: subprocess.Popen | template.Forked | None = None
         self._ready = False     # the worker said it is ready
         self._closed = False
         self._interrupted = False  # see interrupt(): no worker is started again
@@ -587,20 +591,22 @@ class Sandbox:
         view = confine.View(scratch=self.scratch, read_only=(self.submission_dir, self.scratch / "worker"),
                             files=(self.output_path, self.output_path.parent / STACK_NAME),
                             size=self.limits.scratch_bytes)
-        command = self.confinement.wrap(
-            [confine.INTERPRETER, "-I", "-B", str(self.scratch / "worker" / "worker.py"),
-             str(request_r), str(response_w), str(self.submission_dir),
-             str(self.output_path), self.limits.worker_json(processes)],
-            view=view, hold=self._base / "hold")
-        if self.cgroup is not None:
-            command = self.cgroup.wrap(command)
-        command = _ends_with_this_thread(command)
+        script = str(self.scratch / "worker" / "worker.py")
+        arguments = [str(self.submission_dir), str(self.output_path), self.limits.worker_json(processes)]
         try:
-            self.proc = subprocess.Popen(
-                command, pass_fds=(request_r, response_w), stdin=subprocess.DEVNULL,
-                stdout=log, stderr=log, cwd=self.scratch / "work",
-                env=_scrubbed_environment(self.scratch), start_new_session=True,
-            )
+            self.proc = self._forked(script, arguments, view, (request_r, response_w, log.fileno()))
+            if self.proc is None:
+                command = self.confinement.wrap(
+                    [confine.INTERPRETER, "-I", "-B", script, str(request_r), str(response_w), *arguments],
+                    view=view, hold=self._base / "hold")
+                if self.cgroup is not None:
+                    command = self.cgroup.wrap(command)
+                command = _ends_with_this_thread(command)
+                self.proc = subprocess.Popen(
+                    command, pass_fds=(request_r, response_w), stdin=subprocess.DEVNULL,
+                    stdout=log, stderr=log, cwd=self.scratch / "work",
+                    env=_scrubbed_environment(self.scratch), start_new_session=True,
+                )
         except OSError as exc:
             os.close(request_w)
             os.close(response_r)
@@ -617,6 +623,25 @@ class Sandbox:
             _distrust_store()  # before its first request: no student code has run yet
         self._imported = set()
         self._ready = False
+
+    def _forked(self, script: str, arguments: list[str], view: confine.View, fds) -> template.Forked | None:
+        """The worker forked from this process's warm template (:mod:`autograder.sandbox.template`), or None
+        where it is started instead: the process-group level, or no template here."""
+        if self.confinement.level == "process-group":
+            return None
+        warm = template.shared(confine.INTERPRETER, _scrubbed_environment(self.scratch))
+        if warm is None:
+            return None
+        request = {**self.confinement.forked(view, self._base / "hold"), "script": script, "arguments": arguments,
+                   "environment": _scrubbed_environment(self.scratch), "cwd": str(self.scratch / "work"),
+                   "fds": list(fds[:2]),
+                   "cgroup_procs": [str(folder / "cgroup.procs") for folder in self.cgroup.folders]
+                   if self.cgroup is not None else []}
+        try:
+            return warm.fork(request, fds)
+        except TemplateError as exc:
+            template.refuse(f"a fork failed ({exc})")
+            return None
 
     def _await_ready(self, timeout: float | None = None):
         # Wait for the worker's "ready" (it imports NumPy and OpenCV first), so that
@@ -649,8 +674,11 @@ class Sandbox:
         the host numbers it), to look at its descriptors later; held by a pidfd where Linux has
         them, so a number reused after it ended is never mistaken for it."""
         script = str(self.scratch / "worker" / "worker.py")
-        found = [pid for pid in [self.proc.pid, *evidence.descendants(self.proc.pid)]
-                 if evidence.command_line(pid)[1:4] == ["-I", "-B", script]]
+        if isinstance(self.proc, template.Forked):   # (its outer process, PID 1, the worker: all the template's line)
+            found = [pid for pid in evidence.children(self.proc.pid) for pid in evidence.children(pid)][:1]
+        else:
+            found = [pid for pid in [self.proc.pid, *evidence.descendants(self.proc.pid)]
+                     if evidence.command_line(pid)[1:4] == ["-I", "-B", script]]
         self._worker_pid = found[-1] if found else None
         self._worker_alive = lambda: self.proc is not None and self.proc.poll() is None
         if self._worker_pid is not None and hasattr(os, "pidfd_open"):
