@@ -51,6 +51,17 @@ def leave(name):
 '''
 
 
+@pytest.fixture(autouse=True)
+def own_template(monkeypatch):
+    """A template of the test's own: what another test in this process did to the shared one (a refusal it
+    provoked) is not this test's."""
+    monkeypatch.setattr(template, "_SHARED", {})
+    monkeypatch.setattr(template, "_PROCESSES", set())
+    yield
+    if template._SHARED.get("template") is not None:
+        template._SHARED["template"].close()
+
+
 @pytest.fixture
 def probe(tmp_path) -> Path:
     folder = tmp_path / "submission"
@@ -97,7 +108,7 @@ def test_the_template_never_holds_what_a_worker_s_start_carried(probe):
     with Sandbox(probe) as box:
         assert box.call("probe", "state").ok
         name = box.scratch.name.encode()
-        pid = template.shared(confine.INTERPRETER, {})._process.pid
+        pid = template.shared(confine.INTERPRETER, {}).pid
         try:
             memory = _memory_of(pid)
         except PermissionError:
@@ -132,12 +143,23 @@ def test_a_killed_worker_is_told_as_a_started_one_is(probe):
         assert box.call("probe", "state").ok and box.proc is not worker   # (a new worker for the next call)
 
 
+def test_a_process_group_sandbox_s_sweep_of_escaped_daemons_leaves_the_template_and_its_workers(probe):
+    """At the process-group level, closing a sandbox kills the grader's children in other sessions (daemons
+    its worker left); the template and its workers live in sessions of their own and are not such."""
+    with Sandbox(probe) as box:
+        assert box.call("probe", "state").ok and isinstance(box.proc, template.Forked)
+        with Sandbox(probe, confinement=confine.Confinement("process-group")) as other:
+            assert other.call("probe", "state").ok
+        assert box.call("probe", "state").ok          # its forked worker lives on
+    with Sandbox(probe) as box:                       # and so does the template
+        assert box.call("probe", "state").ok and isinstance(box.proc, template.Forked)
+
+
 def test_where_the_template_cannot_fork_workers_are_started_and_the_log_says_why(probe, monkeypatch, caplog):
     def cannot(self, request, fds):
         raise template.TemplateError("refused for the test")
 
     monkeypatch.setattr(template.Template, "fork", cannot)
-    monkeypatch.setattr(template, "_SHARED", {})
     with Sandbox(probe) as box:
         outcome = box.call("probe", "state")
         assert outcome.ok and not isinstance(box.proc, template.Forked)
@@ -159,7 +181,7 @@ def test_the_template_and_its_workers_end_with_the_grading_process(probe):
         from autograder.sandbox.supervisor import Sandbox
         box = Sandbox({str(probe)!r})
         assert box.call("probe", "state").ok
-        print(template.shared(confine.INTERPRETER, {{}})._process.pid, box._worker_pid, flush=True)
+        print(template.shared(confine.INTERPRETER, {{}}).pid, box._worker_pid, flush=True)
         time.sleep(600)
         ''')
     grader = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True,

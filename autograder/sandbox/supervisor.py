@@ -710,7 +710,7 @@ class Sandbox:
         _LIVE_WORKERS.discard(self.proc.pid)
         self._forget_worker()
         if self.confinement.level == "process-group":
-            confine.kill_adopted_orphans(keep=_LIVE_WORKERS)
+            confine.kill_adopted_orphans(keep=_LIVE_WORKERS | template.processes())
             _distrust_store()  # now that nothing of it runs: what it wrote there is never read
             if restarting:
                 self._lay_out_scratch()  # nothing stopped this worker from damaging it
@@ -1032,7 +1032,7 @@ class Sandbox:
         elif set(evidence.descendants(self.proc.pid)) - self._own_pids:
             return "processes"
         if self.cgroup is None and self.confinement.level == "process-group":
-            confine.kill_adopted_orphans(keep=_LIVE_WORKERS)  # re-parented to the grader: no one's now
+            confine.kill_adopted_orphans(keep=_LIVE_WORKERS | template.processes())  # re-parented to the grader: no one's now
         suspect = reply.get("suspect") if type(reply) is dict else None
         if type(suspect) is not str:
             return ""

@@ -96,6 +96,10 @@ class Template:
         finally:
             theirs.close()
 
+    @property
+    def pid(self) -> int:
+        return self._process.pid
+
     def fork(self, request: dict, fds) -> Forked:
         """Fork a worker confined as ``request`` says (:meth:`autograder.sandbox.confine.Confinement.forked`,
         with its script, arguments, environment and working folder) on ``fds`` (its request and response
@@ -144,6 +148,13 @@ class Template:
 
 _LOCK = threading.Lock()
 _SHARED: dict = {}   # {"pid": the process it belongs to, "template": Template | None, "refused": why not}
+_PROCESSES: set[int] = set()   # every template this process started, used or retired: its workers may run
+
+
+def processes() -> set[int]:
+    """The template processes this process started (in sessions of their own, as workers are: a sweep of
+    escaped daemons keeps them, see :func:`autograder.sandbox.confine.kill_adopted_orphans`)."""
+    return set(_PROCESSES)
 
 
 def shared(interpreter: str, environment: dict[str, str]) -> Template | None:
@@ -154,12 +165,14 @@ def shared(interpreter: str, environment: dict[str, str]) -> Template | None:
     with _LOCK:
         if _SHARED.get("pid") != os.getpid():   # (a process forked from one with a template has none yet)
             _SHARED.clear()
+            _PROCESSES.clear()
             _SHARED["pid"] = os.getpid()
             try:
                 _SHARED["template"] = Template(interpreter, environment)
             except OSError as exc:
                 _refuse(f"it could not start ({exc})")
             else:
+                _PROCESSES.add(_SHARED["template"].pid)
                 atexit.register(_SHARED["template"].close)
         return _SHARED.get("template")
 
