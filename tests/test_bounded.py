@@ -31,6 +31,20 @@ def test_a_loop_past_its_cpu_bound_is_stopped_in_its_thread():
     assert time.monotonic() - started < 10
 
 
+def test_a_runaway_swallowed_on_the_way_is_raised_again_while_the_work_goes_on():
+    swallowed = []
+    with pytest.raises(Runaway, match="CPU time"):
+        with bounded(cpu_seconds=0.2):
+            try:
+                while True:
+                    pass
+            except Runaway:       # (a handler of the grader's own, or a bound within this one)
+                swallowed.append(True)
+            while True:
+                pass
+    assert swallowed == [True]
+
+
 def test_waiting_costs_none_of_the_bound_and_nothing_is_raised_after_the_body():
     with bounded(cpu_seconds=0.2):
         time.sleep(0.6)         # (a worker's call: the grader's thread waits)

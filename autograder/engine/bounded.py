@@ -6,7 +6,8 @@ deadlines, but a loop in a reader, an operator or a judge that some shape of cod
 and round checks no clock (the first syntax-tree walk did: it wrapped the node it was reading again and again
 and grew past 19 GB). :func:`bounded` stops such work in the thread doing it: a watchdog thread measures that
 thread's own CPU time (waiting for a worker costs none, so a slow student call is never the grader's) and the
-process's resident memory, and past either bound raises :class:`Runaway` in it. What was being worked out is
+process's resident memory, and past either bound raises :class:`Runaway` in it (again each second while the work
+goes on: a handler on the way, or a bound within this one, may have swallowed it). What was being worked out is
 left out -- a name, a hint, or the check's verdict, which is then a grader error -- and the grading goes on.
 
 The bounds are far beyond any legitimate work (a backstop, not a budget): a bound that fires is a fault of the
@@ -28,6 +29,7 @@ from dataclasses import dataclass, field
 
 MEMORY_GROWTH = 2 * 2**30   # bytes the grader may come to hold beyond what it held when the work began
 POLL_SECONDS = 0.1          # how often the watchdog looks
+AGAIN_SECONDS = 1.0         # a Runaway something swallowed is raised again after this long
 
 
 class Runaway(BaseException):
@@ -44,6 +46,7 @@ class _Guard:
     started: float = 0.0
     fired: str = ""                  # why it was stopped, once it was
     spent: float = field(default=0.0)
+    again: float = 0.0               # time.monotonic() from which it is raised again (the work went on)
 
     def used(self) -> float:
         now = time.clock_gettime(self.clock) if self.clock is not None else time.monotonic()
@@ -100,18 +103,19 @@ class _Watchdog:
                 while not self._guards:
                     self._lock.wait()
                 resident = resident_bytes() if any(g.memory is not None for g in self._guards) else None
+                now = time.monotonic()
                 for guard in self._guards:
-                    if guard.fired:
+                    if guard.fired and now < guard.again:
                         continue
-                    used = guard.used()
+                    used, why = guard.used(), ""
                     if used > guard.cpu_seconds:
-                        guard.fired = (f"{used:.3g} s of the grader's own CPU time, past its bound of "
-                                       f"{guard.cpu_seconds:.3g} s" if guard.clock is not None else
-                                       f"{used:.3g} s, past its bound of {guard.cpu_seconds:.3g} s")
+                        why = (f"{used:.3g} s of the grader's own CPU time, past its bound of "
+                               f"{guard.cpu_seconds:.3g} s" if guard.clock is not None else
+                               f"{used:.3g} s, past its bound of {guard.cpu_seconds:.3g} s")
                     elif guard.memory is not None and resident is not None and resident > guard.memory:
-                        guard.fired = f"the grader came to hold {resident / 2**30:.1f} GB, past its bound"
-                    if guard.fired:
-                        guard.spent = used
+                        why = f"the grader came to hold {resident / 2**30:.1f} GB, past its bound"
+                    if why:   # (again, while the work goes on: a handler on the way may have swallowed it)
+                        guard.fired, guard.spent, guard.again = guard.fired or why, used, now + AGAIN_SECONDS
                         _raise_in(guard.thread, Runaway)
                 self._lock.wait(POLL_SECONDS)
 
