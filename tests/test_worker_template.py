@@ -44,6 +44,7 @@ def state():
         "draw": float(np.random.random()),
         "tmp": sorted(os.listdir("/tmp")),
         "argv": sys.argv,
+        "main": sys.modules["__main__"].__file__,
     }
 
 def leave(name):
@@ -91,6 +92,7 @@ def test_a_forked_worker_holds_no_privilege_and_nothing_of_the_template_or_the_g
     # (its arguments as a started worker's: the pipes' numbers, the submission, the output, the limits)
     assert state["argv"][0].endswith("/worker/worker.py") and len(state["argv"]) == 6
     assert all(argument.isdigit() for argument in state["argv"][1:3])
+    assert state["main"].endswith("worker.py")   # (the worker's code is __main__, as the script started)
 
 
 def test_each_forked_worker_draws_its_own_random_numbers_and_has_its_own_tmp(probe):

@@ -245,7 +245,7 @@ def _worker(request: dict, fds, last_capability: int) -> None:
 def _as_started(request: dict) -> None:
     """What ``python -I -B worker.py`` would have at its start inside this view: its environment, its
     arguments, ``sys.path`` as ``site`` makes it from the view's own site-packages (the grader's own
-    ``.pth`` files are not there), and random states of its own."""
+    ``.pth`` files are not there), random states of its own, and the worker's code as ``__main__``."""
     import importlib
     import random
 
@@ -261,6 +261,8 @@ def _as_started(request: dict) -> None:
     importlib.invalidate_caches()
     random.seed()
     numpy.random.seed()
+    worker.__name__ = "__main__"      # (the script a started worker runs is its __main__)
+    sys.modules["__main__"] = worker
 
 
 def serve(control: socket.socket) -> None:
