@@ -170,6 +170,26 @@ def test_where_the_template_cannot_fork_workers_are_started_and_the_log_says_why
         assert box.call("probe", "state").ok and not isinstance(box.proc, template.Forked)
 
 
+def test_a_forked_worker_ending_before_it_is_ready_gives_way_to_a_started_one(probe, monkeypatch, caplog):
+    """A failure after the fork (in PID 1's view, the worker's privilege drop) ends the worker before it says
+    it is ready: the template is not used again, and this worker is started instead."""
+    dummies = []
+
+    def ends_at_once(self, request, fds):
+        dummies.append(subprocess.Popen(["sleep", "30"], start_new_session=True))
+        status_r, status_w = os.pipe()
+        os.close(status_w)        # (it wrote no status: as if killed)
+        return template.Forked(dummies[-1].pid, status_r)
+
+    monkeypatch.setattr(template.Template, "fork", ends_at_once)
+    with Sandbox(probe) as box:
+        outcome = box.call("probe", "state")
+        assert outcome.ok and not isinstance(box.proc, template.Forked)
+        assert box.restarts == 0
+    assert "a forked worker ended before it was ready (EOFError)" in caplog.text
+    assert len(dummies) == 1 and dummies[0].wait(timeout=10) is not None
+
+
 def test_exec_in_the_environment_starts_every_worker(probe, monkeypatch):
     monkeypatch.setenv("AUTOGRADER_WORKER_START", "exec")
     with Sandbox(probe) as box:

@@ -654,8 +654,13 @@ class Sandbox:
         except (TimeoutError, EOFError, transport.TransportError) as exc:
             # The log goes to the instructor's log, never into a message: it is no grader's word.
             log = (self._base / "worker.log").read_text(errors="replace")[-2000:]
-            logging.getLogger("autograder").error("the grading worker did not start:\n%s", log)
+            forked = isinstance(self.proc, template.Forked) and not isinstance(exc, TimeoutError)
             self._stop_worker()
+            if forked:   # (it ended before it was ready: the template's way fails here, a started worker may not)
+                template.refuse(f"a forked worker ended before it was ready ({type(exc).__name__}):\n{log}")
+                self._spawn_worker()
+                return self._await_ready(timeout)
+            logging.getLogger("autograder").error("the grading worker did not start:\n%s", log)
             raise WorkerStartError(f"the grading worker did not start ({type(exc).__name__}); "
                                    "see the autograder's log") from None
         if ready != {"ok": True, "value": "ready", "seconds": 0.0}:
