@@ -25,7 +25,7 @@ import ctypes
 import os
 import threading
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 MEMORY_GROWTH = 2 * 2**30   # bytes the grader may come to hold beyond what it held when the work began
 POLL_SECONDS = 0.1          # how often the watchdog looks
@@ -45,7 +45,6 @@ class _Guard:
     memory: int | None               # resident bytes past which it is stopped; None where unmeasured
     started: float = 0.0
     fired: str = ""                  # why it was stopped, once it was
-    spent: float = field(default=0.0)
     again: float = 0.0               # time.monotonic() from which it is raised again (the work went on)
 
     def used(self) -> float:
@@ -115,7 +114,7 @@ class _Watchdog:
                     elif guard.memory is not None and resident is not None and resident > guard.memory:
                         why = f"the grader came to hold {resident / 2**30:.1f} GB, past its bound"
                     if why:   # (again, while the work goes on: a handler on the way may have swallowed it)
-                        guard.fired, guard.spent, guard.again = guard.fired or why, used, now + AGAIN_SECONDS
+                        guard.fired, guard.again = guard.fired or why, now + AGAIN_SECONDS
                         _raise_in(guard.thread, Runaway)
                 self._lock.wait(POLL_SECONDS)
 

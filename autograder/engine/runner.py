@@ -461,8 +461,7 @@ def _reading(exercise: Exercise, submission) -> Reading | None:
         with bounded(own_work_bound()):
             return read_file(submission.path / f"{exercise.lab.module}.py", api)
     except Runaway as runaway:   # (the checks are judged without it: nothing is read in their code)
-        logging.getLogger("autograder").error("grader error reading %s.py: stopped (%s); a fault of the grader's",
-                                              exercise.lab.module, runaway)
+        _log_runaway(f"{exercise.lab.module}.py", "reading it", runaway)
         return None
 
 
@@ -771,8 +770,7 @@ def _zero_constant(sandbox, exercise: Exercise, results: list) -> None:
         with bounded(own_work_bound()):
             zero_constant(sandbox, exercise, results)
     except Runaway as runaway:
-        logging.getLogger("autograder").error("telling constant answers in %s: stopped (%s); a fault of the "
-                                              "grader's", exercise.id, runaway)
+        _log_runaway(exercise.id, "telling constant answers", runaway)
     except Exception as exc:  # noqa: BLE001 - the verdicts stand without it
         logging.getLogger("autograder").exception("telling constant answers in %s: %s", exercise.id, exc)
 
@@ -1302,10 +1300,12 @@ def own_work_bound() -> float:
     return 2 * every * naming.last_pace() + 60
 
 
-def _log_runaway(check: Check, doing: str, runaway: Runaway) -> None:
+def _log_runaway(where: "Check | str", doing: str, runaway: Runaway) -> None:
+    """The instructor's log: the grader's own work on ``where`` (a check, or what else it was reading) was
+    stopped by its backstop (:mod:`autograder.engine.bounded`)."""
     logging.getLogger("autograder").error(
         "grader error in %s: %s was stopped (%s); a fault of the grader's, not of the submission's code",
-        check.id, doing, runaway)
+        getattr(where, "id", where), doing, runaway)
 
 
 def _log_grader_error(check: Check, exc: Exception):

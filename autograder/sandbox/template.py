@@ -147,7 +147,7 @@ class Template:
 
 
 _LOCK = threading.Lock()
-_SHARED: dict = {}   # {"pid": the process it belongs to, "template": Template | None, "refused": why not}
+_SHARED: dict = {}   # {"pid": the process it belongs to, "template": the Template, none once refused}
 _PROCESSES: set[int] = set()   # every template this process started, used or retired: its workers may run
 
 
@@ -186,6 +186,5 @@ def refuse(why: str) -> None:
 def _refuse(why: str) -> None:
     # (not ended now: workers forked from it may be running, and end with it -- it ends with this process)
     _SHARED.pop("template", None)
-    _SHARED["refused"] = why
     logging.getLogger("autograder").warning(
         "workers are started one by one, not forked from the warm template: %s", why)
