@@ -629,11 +629,12 @@ class Sandbox:
         where it is started instead: the process-group level, or no template here."""
         if self.confinement.level == "process-group":
             return None
-        warm = template.shared(confine.INTERPRETER, _scrubbed_environment(self.scratch))
+        environment = _scrubbed_environment(self.scratch)
+        warm = template.shared(confine.INTERPRETER, environment)
         if warm is None:
             return None
         request = {**self.confinement.forked(view, self._base / "hold"), "script": script, "arguments": arguments,
-                   "environment": _scrubbed_environment(self.scratch), "cwd": str(self.scratch / "work"),
+                   "environment": environment, "cwd": str(self.scratch / "work"),
                    "fds": list(fds[:2]),
                    "cgroup_procs": [str(folder / "cgroup.procs") for folder in self.cgroup.folders]
                    if self.cgroup is not None else []}
