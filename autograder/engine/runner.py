@@ -1300,7 +1300,7 @@ def own_work_bound() -> float:
     return 2 * every * naming.last_pace() + 60
 
 
-def _log_runaway(where: "Check | str", doing: str, runaway: Runaway) -> None:
+def _log_runaway(where: Check | str, doing: str, runaway: Runaway) -> None:
     """The instructor's log: the grader's own work on ``where`` (a check, or what else it was reading) was
     stopped by its backstop (:mod:`autograder.engine.bounded`)."""
     logging.getLogger("autograder").error(
