@@ -394,3 +394,39 @@ def test_a_ransac_without_refit_is_not_told_to_draw_more_samples_or_keep_the_bes
     assert not seeds.passed
     assert "the H returned is not the one its inliers give" in seeds.message, seeds.message
     assert "draw enough samples" not in seeds.hint + seeds.message and "refit" in seeds.hint, seeds.hint
+
+
+RANSAC_REFIT_ON = """
+def homography_ransac(src, dst, threshold=3.0, seed=None):
+    src = np.asarray(src, dtype=np.float64).reshape(-1, 2)
+    dst = np.asarray(dst, dtype=np.float64).reshape(-1, 2)
+    rng = np.random.default_rng(seed)
+    best_inliers, best_count = np.zeros(len(src), dtype=bool), 0
+    for _ in range(500):
+        idx = rng.choice(len(src), 4, replace=False)
+        H = homography_dlt(src[idx], dst[idx])
+        inliers = np.linalg.norm(transform_points(H, src) - dst, axis=1) < threshold
+        if inliers.sum() > best_count:
+            best_count, best_inliers = inliers.sum(), inliers
+    if best_count < 4:
+        return homography_dlt(src, dst), np.ones(len(src), dtype=bool)
+    {refit}
+    return H, best_inliers
+"""
+
+
+@pytest.mark.parametrize("refit, told", [
+    ("H = homography_dlt(src, dst)", "`H = homography_dlt(src, dst)`"),
+    ("H = homography_dlt(src[best_inliers], dst[best_inliers])", None),
+    ("src, dst = src[best_inliers], dst[best_inliers]\n    H = homography_dlt(src, dst)", None),
+])
+def test_a_refit_after_the_loop_on_every_pair_is_read_where_it_is(tmp_path, refit, told):
+    """The RANSAC reading of a refit given the whole arrays the loop samples, after the loop (the fallback branch
+    of too few inliers is no refit); arrays selected first, or selected in the call, are not every pair."""
+    from types import SimpleNamespace
+
+    from autograder.labs.lab08 import _refit_on_every_pair
+    folder = mutant(tmp_path, "lab08_homographies", RANSAC_REFIT_ON.replace("{refit}", refit))
+    trial = SimpleNamespace(sandbox=SimpleNamespace(submission_dir=folder), lab=SimpleNamespace(module="lab08_homographies"))
+    found = _refit_on_every_pair(trial)
+    assert (found is None) if told is None else (found is not None and found.startswith(told + ", line ")), found

@@ -5841,3 +5841,90 @@ def test_a_column_taken_for_a_row_of_svd_is_told_why(shown, code, told):
 def test_a_number_made_a_python_float_is_not_said_to_make_arrays_float():
     assert not repair._makes_float("n = float(n)", {})
     assert repair._makes_float("image = image.astype(float)", {})
+
+
+def test_a_fix_given_to_one_factor_of_a_pair_is_a_change_made_to_both():
+    """`K, R = rq(M)` then `K = K @ D` alone (the sign fix on K's columns, R's rows left): K @ R is no longer M;
+    the change gives R the fix's inverse on its other side. Not offered where R is given a value again."""
+    source = textwrap.dedent("""
+        import numpy as np
+        import scipy.linalg
+        def graded(M):
+            K, R = scipy.linalg.rq(M)
+            D = np.diag(np.sign(np.diag(K)))
+            K = K @ D
+            return K, R
+    """)
+    changes = _shown_changes(source, "factor_pair")
+    assert ("K = K @ D", "K, R = (K @ D, D @ R)") in changes, changes
+    fixed = source.replace("    K = K @ D\n", "    K = K @ D\n    R = D @ R\n")
+    assert fixed != source
+    assert _shown_changes(fixed, "factor_pair") == []
+
+
+def test_a_sign_fix_made_to_k_alone_is_named_with_the_change_that_gives_r_its_rows(tmp_path):
+    folder = mutant(tmp_path, "lab10_camera2", """
+        import scipy.linalg
+
+        def decompose_camera_matrix(P):
+            P = np.asarray(P, dtype=float)
+            if np.linalg.det(P[:, :3]) < 0:
+                P = -P
+            K, R = scipy.linalg.rq(P[:, :3])
+            D = np.diag(np.sign(np.diag(K)))
+            K = K @ D
+            t = np.linalg.inv(K) @ P[:, 3]
+            return K / K[2, 2], R, t
+    """)
+    result = grade(folder, ["lab10.ex5"], pictures="none", include_hidden=False)
+    failed = [c for c in check_results(result, "lab10.ex5") if c.score < c.max_score]
+    assert failed and any("`K = K @ D` to `K, R = (K @ D, D @ R)`" in c.message for c in failed), \
+        [c.message for c in failed]
+
+
+def test_a_copy_a_loop_changes_in_place_is_made_anew_at_each_turn():
+    """`moved = X.copy()` above a loop shifting `moved[:, 2] += d` and projecting it: the shifts add up from one
+    turn to the next; the copy moved into the loop as its first statement. A copy the loop only reads is left."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(X, distances):
+            out = []
+            moved = X.copy()
+            for d in distances:
+                moved[:, 2] += d
+                out.append(moved[:, :2] / moved[:, 2:3])
+            kept = X.copy()
+            for d in distances:
+                out.append(kept * d)
+            return out
+    """)
+    changes = _shown_changes(source, "indent")
+    assert any(before == "moved = X.copy()" and "first statement: a new one for each turn" in after
+               for before, after in changes), changes
+    assert not any(before == "kept = X.copy()" for before, _ in changes), changes
+
+
+def test_a_call_given_every_point_is_offered_the_points_a_mask_keeps():
+    """A refit after a RANSAC loop given `(src, dst)` whole, in code that selects `src[inliers]` elsewhere: the call
+    given the arrays selected by the mask bound last above it (`best`), then the others; a call already given
+    selected arrays, or given arrays nothing selects, is left."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def fit(a, b):
+            return a.mean() + b.mean()
+        def graded(src, dst, other, rng):
+            best = np.zeros(len(src), dtype=bool)
+            for _ in range(10):
+                idx = rng.choice(len(src), 4)
+                inliers = np.abs(src[idx].sum() - dst) < 1
+                if inliers.sum() > best.sum():
+                    best = inliers
+            H = fit(src, dst)
+            G = fit(src[best], dst[best])
+            F = fit(other, other)
+            return H, G, F, fit(src[inliers], dst[inliers])
+    """)
+    changes = _shown_changes(source, "select_mask")
+    assert changes[0] == ("fit(src, dst)", "fit(src[best], dst[best])"), changes
+    assert ("fit(src, dst)", "fit(src[inliers], dst[inliers])") in changes
+    assert not any(before.startswith(("fit(src[", "fit(other")) for before, _ in changes), changes

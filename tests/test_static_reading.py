@@ -2019,3 +2019,26 @@ def test_a_pair_returned_or_unpacked_beside_a_conditional_is_meant():
         def f(H, ok, mask):
             {line}
         """)
+
+
+def test_a_pyramid_of_uint8_images_is_read_as_uint8_where_its_levels_are_subtracted():
+    """`g = [img1]`, `g.append(cv2.pyrDown(g[i]))`, then `g[i] - cv2.pyrUp(g[i + 1])`: the levels of a list of uint8
+    images wrap around as the images do; a list given a float level, or lists added (concatenated), are not."""
+    wraps = """
+        def blend_multiband(img1, img2, mask, levels=4):
+            g = [img1]
+            for i in range(levels - 1):
+                g.append(cv2.pyrDown(g[i]))
+            return [g[i] - cv2.pyrUp(g[i + 1]) for i in range(levels - 1)]
+        """
+    assert "uint8 arithmetic wraps around" in one(wraps, api={"blend_multiband"})
+    floats = wraps.replace("g = [img1]", "g = [img1.astype(np.float32)]")
+    assert "uint8 arithmetic wraps around" not in one(floats, api={"blend_multiband"})
+    appended_float = wraps.replace("g.append(cv2.pyrDown(g[i]))", "g.append(cv2.pyrDown(g[i]) / 1.0)")
+    assert "uint8 arithmetic wraps around" not in one(appended_float, api={"blend_multiband"})
+    concatenated = """
+        def blend_multiband(img1, img2, mask, levels=4):
+            both = [img1] + [img2]
+            return both
+        """
+    assert "uint8 arithmetic wraps around" not in one(concatenated, api={"blend_multiband"})

@@ -1429,6 +1429,9 @@ def poor_consensus_cause(t: Trial) -> str | None:
     if wins == 4:
         return NO_DIVISION
     if wins <= 2:
+        refit = _refit_claim(t)
+        if refit and _keeps_the_best(t):
+            return refit
         drawn = _fixed_sample_counts(t)
         enough = bool(drawn) and min(drawn) >= SAMPLES_ENOUGH   # (code drawing 1000 samples does not draw too few)
         if _keeps_the_best(t):
@@ -1480,6 +1483,38 @@ def _keeps_the_best(t: Trial) -> bool:
 
 
 SAMPLES_ENOUGH = 200   # a loop this long keeps a good model of half-wrong pairs (4-point samples)
+
+
+def _refit_on_every_pair(t: Trial) -> str | None:
+    """The student's RANSAC refitting after its sampling loop on every pair: a call given the whole point
+    arrays that the loop samples (`src[idx]` inside it), in the function's own body after the loop -- not
+    in a branch of its own, the fallback where too few inliers were found (`if best_count < 4: return
+    homography_dlt(src, dst)`). "`H = homography_dlt(src, dst)`, line 201", or None."""
+    for function in code_of(t).reachable(["homography_ransac"]):
+        body = getattr(function, "body", [])
+        for k, loop in enumerate(body):
+            if not (isinstance(loop, (ast.For, ast.While)) and any(
+                    isinstance(node, ast.Call) and any(word in _path(node.func).lower() for word in _DRAWS)
+                    for node in walk(loop))):
+                continue
+            sampled = {node.value.id for node in walk(loop) if isinstance(node, ast.Subscript)
+                       and isinstance(node.value, ast.Name) and isinstance(node.ctx, ast.Load)}
+            for statement in body[k + 1:]:
+                if isinstance(statement, (ast.Assign, ast.Return, ast.Expr)):
+                    for call in (n for n in walk(statement) if isinstance(n, ast.Call)):
+                        whole = [a.id for a in call.args if isinstance(a, ast.Name) and a.id in sampled]
+                        if len(whole) >= 2:
+                            return f"`{' '.join(ast.unparse(statement).split())[:80]}`, line {statement.lineno}"
+                # (an array given a new value after the loop -- `src = src[best]` -- is no longer every pair)
+                sampled -= {n.id for n in walk(statement) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    return None
+
+
+def _refit_claim(t: Trial) -> str | None:
+    where = _refit_on_every_pair(t)
+    return None if where is None else (
+        f"after its loop your code refits H on every pair ({where}), outliers included: the refit belongs on the "
+        "inliers of the best model the loop kept")
 
 
 _DRAWS = ("random", "choice", "permutation", "shuffle", "sample", "integers", "randint")
@@ -1814,7 +1849,7 @@ def another_hypothesis(inliers, src, dst) -> bool:
 def ransac_mask_of_h(t):
     notes = []
     for (seed, n, fraction, noise), k in MASK_PROBLEMS:
-        src, dst, H_true, _ = truth.ransac_problem(seed, n, fraction, noise)
+        src, dst, H_true, true_inliers = truth.ransac_problem(seed, n, fraction, noise)
         what = f"homography_ransac(src, dst, seed={k})"
         H, inliers = ransac_result(t, src, dst, what, seed=k)
         far, near = mask_disagreement(H, inliers, src, dst, 3.0)
@@ -1846,6 +1881,14 @@ def ransac_mask_of_h(t):
                    f"to dst and compared with src (|H dst - src| < 3 px): H and the mask agree with each other, "
                    f"but H maps dst onto src: it looks like {SWAPPED_ENDS}; H must map src onto dst.",
                    mistake=SWAPPED_ENDS)
+        if not right_h and (inliers == true_inliers).mean() >= 0.95:
+            # the mask is the true inliers: it is H that does not come from them (a refit on every pair)
+            refit = _refit_claim(t)
+            t.fail(f"{what}: the mask marks the true inliers ({int((inliers & true_inliers).sum())} of the "
+                   f"{int(true_inliers.sum())}), but your H sends {int(far.sum())} of the pairs it marks more than "
+                   f"{MASK_BAND:g} x threshold (3 px) away: H is not the model of the pairs the mask marks"
+                   + (f": it looks like {refit}." if refit else "."),
+                   mistake=refit or "H is not the model of the inliers the mask marks")
         measured = (f"{what}: the mask and H returned do not agree: {int(far.sum())} of the {int(inliers.sum())} "
                     f"pairs marked as inliers are more than {MASK_BAND:g} x threshold (3 px) from where your H sends "
                     f"them, and {int(near.sum())} pairs within {3.0 / MASK_BAND:g} px are not marked. The mask must be "

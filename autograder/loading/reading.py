@@ -576,20 +576,51 @@ def _uint8_names(function, parameters) -> set[str]:
     return images
 
 
-def _is_uint8_expression(node, images) -> bool:
+def _uint8_lists(function, images) -> set[str]:
+    """Names that surely hold lists of uint8 images (a pyramid: `g = [img]`, then `g.append(cv2.pyrDown(g[i]))`):
+    bound only to list displays of uint8 images, and given only uint8 images by `.append`/`.insert`."""
+    assigned = _assigned_names(function)
+    lists = {name for name, values in assigned.items()
+             if values and all(isinstance(v, (ast.List, ast.Tuple)) and v.elts for v in values)}
+    for _ in range(4):
+        def uint8(node) -> bool:
+            return (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in lists) \
+                or _is_uint8_expression(node, images, lists)
+        kept = {name for name in lists if all(uint8(e) for v in assigned[name] for e in v.elts)}
+        for node in _nodes(function):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in ("append", "insert") \
+                    and isinstance(node.func.value, ast.Name) and node.func.value.id in kept \
+                    and not (node.args and uint8(node.args[-1])):
+                kept.discard(node.func.value.id)
+            elif isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "extend" \
+                    and isinstance(node.func.value, ast.Name):
+                kept.discard(node.func.value.id)   # (what it is extended by is not followed)
+            elif isinstance(node, ast.AugAssign) and isinstance(node.target, ast.Name):
+                kept.discard(node.target.id)
+        if kept == lists:
+            break
+        lists = kept
+    return lists
+
+
+def _is_uint8_expression(node, images, lists=frozenset()) -> bool:
+    """Whether ``node`` surely holds a uint8 image: one of ``images``, an item of one of ``lists`` (lists of
+    uint8 images), a slice or a copy of one, what an image function makes of one."""
     if isinstance(node, ast.Name):
         return node.id in images
     if isinstance(node, ast.Subscript):
-        return _is_uint8_expression(node.value, images)
+        if isinstance(node.value, ast.Name) and node.value.id in lists:
+            return True
+        return _is_uint8_expression(node.value, images, lists)
     if isinstance(node, ast.Call):
         call = _call_name(node)
         if call in {"copy", "zeros_like", "empty_like", "roll", "ascontiguousarray"} and not any(
                 k.arg == "dtype" for k in node.keywords):
             receiver = node.func.value if isinstance(node.func, ast.Attribute) and call == "copy" else \
                 (node.args[0] if node.args else None)
-            return receiver is not None and _is_uint8_expression(receiver, images)
+            return receiver is not None and _is_uint8_expression(receiver, images, lists)
         if call in IMAGE_FUNCTIONS and node.args:
-            return _is_uint8_expression(node.args[0], images)
+            return _is_uint8_expression(node.args[0], images, lists)
     return False
 
 
@@ -597,13 +628,14 @@ def _uint8_arithmetic(name, function, parameters) -> list[Finding]:
     images = _uint8_names(function, parameters)
     if not images:
         return []
+    lists = _uint8_lists(function, images)
     for node in _nodes(function):
         if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub, ast.Mult, ast.Pow)):
             sides = (node.left, node.right)
             if isinstance(node.op, ast.Pow):
-                wraps = _is_uint8_expression(node.left, images)
+                wraps = _is_uint8_expression(node.left, images, lists)
             else:
-                wraps = all(_is_uint8_expression(side, images) for side in sides)
+                wraps = all(_is_uint8_expression(side, images, lists) for side in sides)
             if wraps:
                 return [Finding(name, _line(node), "uint8 arithmetic wraps around",
                                 f"{name} (line {_line(node)}) computes {ast.unparse(node)[:60]} on uint8 "

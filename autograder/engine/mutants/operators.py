@@ -210,6 +210,8 @@ OPERATORS = {
     "neutral_argument": ("scale", "1", "argument", "zoom"),   # cv2.getRotationMatrix2D(c, a, zoom) -> (c, a, 1.0)
     "factor_transposed": ("transpos", "product", "factor"),   # (K2 @ F).T -> K2.T @ F
     "twin_factor": ("missing", "also", "both", "factor"),   # P1 = K @ A; P2 = B -> P2 = K @ B
+    "select_mask": ("mask", "inlier", "selected", "kept", "all"),   # fit(src, dst) -> fit(src[best], dst[best]): every point where the kept ones belong
+    "factor_pair": ("missing", "also", "both", "sign", "factor"),   # K = K @ D -> K, R = K @ D, D @ R: a factor's fix made to one of the pair
     "stride": ("row", "2 *", "twice", "index"),           # A[i] = ...; A[i + 1] = ... -> A[2 * i], A[2 * i + 1]
     "keep_axis": ("column", "axis", "broadcast"),         # pts[:, :2] / pts[:, 2] -> pts[:, 2:3]
     "column_order": ("row", "column", "x", "y", "order"),
@@ -1323,6 +1325,21 @@ def _make_sibling_step(node, payload):
         ast.Tuple([copy_tree(node.value), twin.value], ast.Load())), node))
 
 
+def _make_factor_pair(node, payload):
+    other, text = payload   # K = K @ D -> K, R = K @ D, D @ R
+    return ast.fix_missing_locations(ast.copy_location(ast.Assign(
+        [ast.Tuple([copy_tree(node.targets[0]), ast.Name(other, ast.Store())], ast.Store())],
+        ast.Tuple([copy_tree(node.value), _parse(text).body[0].value], ast.Load())), node))
+
+
+def _make_select_mask(node, payload):
+    arrays, mask = payload   # f(src, dst) -> f(src[best], dst[best])
+    new = copy_tree(node)
+    new.args = [ast.Subscript(a, ast.Name(mask, ast.Load()), ast.Load()) if isinstance(a, ast.Name) and a.id in arrays
+                else a for a in new.args]
+    return new
+
+
 def _make_sibling_argument(node, payload):
     new = copy_tree(node)
     position, text = payload
@@ -1955,7 +1972,7 @@ _MAKE = {**{name: _make_written for name in ("einsum", "map_whole", "unflip", "l
          "whole_vector": _make_whole_vector, "quadrant": _make_quadrant, "swap_both": _make_swap_both,
          "power_spread": _make_power_spread, "keep_result": _make_keep_result, "add_axis": _make_add_axis,
          "flip_keyword": _make_flip_keyword, "float32": _make_float32, "python_numbers": _make_python_numbers, "size_given": _make_size_given, "twin_step": _make_twin_step, "twin_argument": _make_twin_argument, "measure": _make_measure, "power_inside": _make_power_inside,
-         "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
+         "slice": _make_slice, "slice_item": _make_slice_item, "row_column": _make_row_column, "drop_slice": _make_drop_slice, "canvas": _make_canvas, "loop_all": _make_loop_all, "compare": _make_compare, "regroup": _make_regroup, "dtype": _make_dtype, "sibling_step": _make_sibling_step, "factor_pair": _make_factor_pair, "select_mask": _make_select_mask, "sibling_argument": _make_sibling_argument, "swap_items": _make_swap_items, "cross_items": _make_cross_items, "dehomogenise": _make_dehomogenise, "unwrap": _make_unwrap, "own_values": _make_own_values, "scale_inverse": _make_scale_inverse, "function": _make_function, "other_name_line": _make_other_name_line, "arithmetic": _make_arithmetic, "stack_kind": _make_stack_kind, "drop_mask": _make_drop_mask,
          "reshape_transpose": _make_reshape_transpose, "int_base": _make_int_base, "loop_counter": _make_loop_counter, "shape_reversed": _make_shape_reversed, "flat_column": _make_flat_column, "count_rows": _make_count_rows, "unpack_pair": _make_unpack_pair, "source_names": _make_source_names, "tile_repeat": _make_tile_repeat, "square_window": _make_square_window, "stack_window": _make_stack_window, "per_image": _make_per_image, "flip_reduction": _make_flip_reduction, "cross_multiply": _make_cross_multiply, "clip_range": _make_clip_range, "flip_axis": _make_flip_axis, "row_kron": _make_row_kron, "math_numpy": _make_math_numpy, "shift": _make_shift, "loop_index": _make_loop_index, "sign": _make_sign, "add_sub": _make_add_sub, "swap_operands": _make_swap_operands,
          "swap_args": _make_swap_args, "transpose": _make_transpose, "degrees": _make_degrees,
          "axis": _make_axis, "minmax": _make_minmax, "flag": _make_flag, "bound": _make_bound,
@@ -2620,13 +2637,15 @@ def _statement_moves(fn):
 
 
 def _reset_each_turn(earlier, loop):
-    """Statements among ``earlier`` (just above ``loop``) starting a collection or a sum that the loop
-    grows and also reads at each turn, beside the growing: a per-turn value made once, so each turn
-    sees the turns before it too (`rows = []` above a loop appending four rows and solving
-    `np.array(rows)` in it: the first point's rows in every later system)."""
+    """Statements among ``earlier`` (just above ``loop``) starting a collection or a sum, or making a copy,
+    that the loop grows or changes in place and also reads at each turn, beside the change: a per-turn
+    value made once, so each turn sees the turns before it too (`rows = []` above a loop appending four
+    rows and solving `np.array(rows)` in it: the first point's rows in every later system; `moved =
+    X.copy()` above a loop shifting `moved[:, 2] += d - z0` and projecting it: the shifts add up)."""
     for k, statement in enumerate(earlier):
         if not (isinstance(statement, ast.Assign) and len(statement.targets) == 1
-                and isinstance(statement.targets[0], ast.Name) and _starts_empty(statement.value)):
+                and isinstance(statement.targets[0], ast.Name)
+                and (_starts_empty(statement.value) or _fresh_copy(statement.value))):
             continue
         name = statement.targets[0].id
         if any(name in _read(s) | _assigned(s) for s in earlier[k + 1:]):
@@ -2639,6 +2658,16 @@ def _reset_each_turn(earlier, loop):
                 read = True   # (a compound statement's own reading is its parts', walked on their own)
         if grown and read:
             yield statement
+
+
+def _fresh_copy(value) -> bool:
+    """A new copy of an array: `x.copy()`, `np.copy(x)`, `np.array(x, ...)`, `x.astype(...)`."""
+    if not isinstance(value, ast.Call):
+        return False
+    called = _dotted(value.func)
+    if isinstance(value.func, ast.Attribute) and value.func.attr in ("copy", "astype") and not called.startswith(("np.", "numpy.")):
+        return True
+    return called in ("np.copy", "numpy.copy", "np.array", "numpy.array") and len(value.args) >= 1
 
 
 def _starts_empty(value) -> bool:
@@ -5746,6 +5775,93 @@ def _twin_factor(node, words):
                 return
 
 
+def _factor_pair(node, words):
+    """A fix made to one factor of a product and not undone in the other: `K, R = rq(M)` then `K = K @ D`
+    (K's columns given the signs that make its diagonal positive) with R's rows left as they were, so
+    K @ R is no longer M: the pair changed together, `K, R = K @ D, D @ R` (a sign matrix is its own
+    inverse; any other matrix's inverse is tried too). The left factor is fixed on its right, the right
+    factor on its left; the other factor is not assigned again after the fix."""
+    if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
+            and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.MatMult)):
+        return
+    name, product = node.targets[0].id, node.value
+    for position, (mine, fix) in enumerate(((product.left, product.right), (product.right, product.left))):
+        if not (isinstance(mine, ast.Name) and mine.id == name) or name in _read(fix):
+            continue
+        for line, value, index in words.definitions.get(name, ()):
+            if index is None or line >= node.lineno or not isinstance(value, ast.Call):
+                continue
+            partners = [other for other, defs in words.definitions.items() if other != name
+                        and any(at == line and v is value and i == 1 - index for at, v, i in defs)]
+            # (the left factor (index 0) is fixed on its right (position 0), the right factor on its left)
+            if len(partners) != 1 or index != position or partners[0] in _read(fix) or any(
+                    at > line and at != node.lineno for at, _, _ in words.definitions[partners[0]]):
+                continue
+            other, text = partners[0], ast.unparse(fix)
+            fix_text = text if isinstance(fix, (ast.Name, ast.Attribute, ast.Subscript, ast.Call)) else f"({text})"
+            for undone in (fix_text, f"np.linalg.inv({text})"):
+                yield "factor_pair", (other, f"{undone} @ {other}" if index == 0 else f"{other} @ {undone}"), ""
+            return
+
+
+def _boolean_made(value) -> bool:
+    """A comparison, or a new boolean array (`np.zeros(n, dtype=bool)`)."""
+    return _masks(value) or (isinstance(value, ast.Call) and _dotted(value.func).rsplit(".", 1)[-1] in _ALLOCATIONS
+                             and any(k.arg == "dtype" and ast.unparse(k.value) in ("bool", "np.bool_", "numpy.bool_")
+                                     for k in value.keywords))
+
+
+def _masks_held(fn) -> frozenset:
+    """The names ``fn`` gives a mask at some point -- a comparison, a new boolean array, another such name
+    (`best = np.zeros(n, dtype=bool)`, later `best = inliers`) -- looser than :func:`_mask_names` (a name
+    also given other values counts), for changes that only offer a mask where one may belong."""
+    held = set()
+    assigned = [(t.id, n.value) for n in walk(fn) if isinstance(n, ast.Assign) for t in n.targets if isinstance(t, ast.Name)]
+    for _ in range(_MASK_ROUNDS):
+        grown = held | {name for name, value in assigned if _boolean_made(value)
+                        or (isinstance(value, ast.Name) and value.id in held)}
+        if grown == held:
+            break
+        held = grown
+    return frozenset(held)
+
+
+def _masked_arrays(fn) -> dict:
+    """name -> the mask names ``fn`` indexes it with somewhere (`src[inliers]`), kept per def."""
+    known = getattr(fn, "_grader_masked_arrays", None)
+    if known is None:
+        masks, known = _masks_held(fn), {}
+        for n in walk(fn):
+            if isinstance(n, ast.Subscript) and isinstance(n.ctx, ast.Load) and isinstance(n.value, ast.Name) \
+                    and isinstance(n.slice, ast.Name) and n.slice.id in masks:
+                known.setdefault(n.value.id, set()).add(n.slice.id)
+        fn._grader_masked_arrays = known
+    return known
+
+
+_MASKS_TRIED = 3   # masks a call's arrays are selected by, at most (the last bound above it first)
+
+
+def _selected_by_mask(node, words):
+    """Every point given where the points a mask keeps belong: `homography_dlt(src, dst)` after a RANSAC
+    loop that keeps its consensus as `best_inliers`, in code that selects `src[inliers]` elsewhere -- the
+    arrays the code indexes by a mask somewhere, given whole to a call, selected by each mask bound above
+    it (the last bound first)."""
+    if not (isinstance(node, ast.Call) and len(node.args) >= 2 and not any(isinstance(a, ast.Starred) for a in node.args)):
+        return
+    masked = _masked_arrays(words.fn)
+    arrays = [a.id for a in node.args if isinstance(a, ast.Name) and a.id in masked]
+    if len(arrays) < 2:
+        return
+    line = node.lineno
+    # (any mask bound above the call: the one the code selects with elsewhere may be the loop's, not the best)
+    bound = sorted(((max(at for at, _, _ in words.definitions.get(m, ()) if at < line), m)
+                    for m in _masks_held(words.fn)
+                    if any(at < line for at, _, _ in words.definitions.get(m, ()))), reverse=True)
+    for _, mask in bound[:_MASKS_TRIED]:
+        yield "select_mask", (tuple(arrays), mask), ""
+
+
 def _counted_by_length(node, words):
     """A loop counted by a number written in the code where the length of a list the function is given
     belongs: `for k in range(3)` for `range(len(images))` (three images in the student's own tests)."""
@@ -5842,6 +5958,8 @@ def _sibling_changes(node, words):
     yield from _default_written_out(node, words)
     yield from _crossed_twins(node, words)
     yield from _twin_factor(node, words)
+    yield from _factor_pair(node, words)
+    yield from _selected_by_mask(node, words)
     yield from _twin_argument_changes(node, words)
     yield from _canvas_changes(node, words)
     yield from _per_item_changes(node, words)

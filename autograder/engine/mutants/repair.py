@@ -578,9 +578,17 @@ class _Student:
                 # changed on its own line, not compensated on the line before).
                 novel = self._novel[function] = self._novel_statements(function, shown)
                 # A statement written as the reference's but at a place or two, made its counterpart's, before all:
-                # the slip the code shows beside the statement it stands for (aligned.py).
+                # the slip the code shows beside the statement it stands for (aligned.py); and beside them, a
+                # call given whole arrays the code selects by a mask elsewhere, selected by the mask bound last
+                # above it (a refit after a RANSAC loop given every point: a slow loop's search tries few changes).
+                selections = {}
+                for m in shown:   # (in the order made: the mask bound last above the call first)
+                    if m.operator == "select_mask":
+                        selections.setdefault(m.edits[0][:2], m.key)
+                first_selections = set(selections.values())
                 self._ordered[function] = sorted(smallest, key=lambda m: (
-                    m.operator not in ALIGNED, not (m.where != function and self._place_of(m) in novel),
+                    m.operator not in ALIGNED and m.key not in first_selections,
+                    not (m.where != function and self._place_of(m) in novel),
                     m.where != function, turn[m.key]))
             return self._ordered[function]
 
@@ -3610,13 +3618,13 @@ FIXES = 3         # the most fixes told (one per line)
 # changes the student's code itself points at -- a line copied from its twin's with one name left, a step
 # done to one of two like inputs or twin terms only -- tried before every other kind's first
 # (and an OpenCV 0/1 mask used as an index, known by its name: a slow pipeline's search reaches it first)
-SHOWN_BY_THE_CODE = {"mirror", "clip_range", "sibling_step", "twin_step", "boolean_mask", "derived_name", "measure_first", "identity",
+SHOWN_BY_THE_CODE = {"mirror", "clip_range", "sibling_step", "factor_pair", "select_mask", "twin_step", "boolean_mask", "derived_name", "measure_first", "identity",
                      "first_term", "own_values", "estimator", "unused_name"}
 REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "extra_step", "unwrap", "drop_conversion",
             "drop_mask", "drop_slice", "neutral", "drop_epsilon"}   # changes that take a step out
 BRANCHING = {"compare", "logic", "negate", "default"}   # changes of which branch runs
 ALIGNED = {"aligned", "add_step", "extra_step"}   # changes that make a statement its counterpart in the reference (aligned.py)
-ADDITIONS = {"sibling_step", "twin_step", "sibling_argument"}   # changes that add a twin's step beside a line
+ADDITIONS = {"sibling_step", "factor_pair", "twin_step", "sibling_argument"}   # changes that add a twin's step beside a line
 RESERVE = 0.8     # seconds kept for confirming the fixes found, once one is
 CONFIRMATION_CALLS = 6   # or the time of this many of the student's calls, if longer (at most half the time)
 CONFIRMATION_INPUTS = 15  # about as many inputs a change is confirmed on (derived, seen, given otherwise, ...)
