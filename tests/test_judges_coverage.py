@@ -192,3 +192,21 @@ def test_rgb_conversion_is_blamed_only_on_code_that_converts():
     assert beginner.RGB_FOR_BGR.endswith(beginner.RGB_ONLY_TO_SHOW)
     assert told(beginner.RGB_ONLY_TO_SHOW, "def f(image):\n    return cv2.cvtColor(image, cv2.COLOR_BGR2RGB)\n")
     assert not told(beginner.RGB_ONLY_TO_SHOW, "def f(b, g, r):\n    return np.dstack([r, g, b])\n")
+
+
+def test_a_division_by_a_third_coordinate_made_a_column_is_read_as_the_division():
+    """`w = x_h[:, 2]` then `x_h / w[:, None]` (or `w.reshape(-1, 1)`) divides by the third coordinate: code that
+    does it and returns the undivided array is not told the division is missing, but that what it returns is not
+    the divided points; a division by a constant is no such division."""
+    from autograder.labs.lab09 import PROJECTION_DIVISION_MISSING
+    text = PROJECTION_DIVISION_MISSING   # (guard returns the sentence itself)
+    source = """
+        def f(P, X):
+            x_h = X @ P.T
+            w = x_h[:, 2]
+            x_n = x_h / w[:, None]
+            return x_h[:, :2]
+        """
+    assert not told(text, source)
+    assert not told(text, source.replace("w[:, None]", "w.reshape(-1, 1)"))
+    assert told(text, source.replace("x_h / w[:, None]", "x_h / 2.0"))

@@ -318,6 +318,7 @@ def divides_by(*patterns: str, says: str = "") -> Predicate:
         held = _assigned_names(function, shaped)
 
         def divisor(node) -> bool:
+            node = _axis_added_to(node)
             return shaped(node) or (isinstance(node, ast.Name) and node.id in held)
         for node in walk(function):
             if isinstance(node, (ast.BinOp, ast.AugAssign)) and isinstance(node.op, (ast.Div, ast.FloorDiv)):
@@ -328,6 +329,24 @@ def divides_by(*patterns: str, says: str = "") -> Predicate:
                 return True
         return False
     return Predicate(says or "divides by " + " or ".join(p.replace("_", "...") for p in patterns), test)
+
+
+def _axis_added_to(node):
+    """The name an axis is added to (`w[:, None]`, `w[..., np.newaxis]`, `w.reshape(-1, 1)`: the same values,
+    made a column to divide rows by), else ``node``."""
+    if isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and isinstance(node.slice, ast.Tuple) \
+            and len(node.slice.elts) == 2 and any(_new_axis(e) for e in node.slice.elts) \
+            and any(isinstance(e, ast.Slice) and e.lower is e.upper is e.step is None
+                    or isinstance(e, ast.Constant) and e.value is Ellipsis for e in node.slice.elts):
+        return node.value
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "reshape" \
+            and isinstance(node.func.value, ast.Name) and [ast.unparse(a) for a in node.args] == ["-1", "1"]:
+        return node.func.value
+    return node
+
+
+def _new_axis(node) -> bool:
+    return (isinstance(node, ast.Constant) and node.value is None) or _path(node) in ("np.newaxis", "numpy.newaxis")
 
 
 # The third (last) coordinate of points, however indexed: X[:, 2], X[2], X[..., 2:], X[:, -1:], ...
