@@ -1,5 +1,6 @@
 """The batch on a Dask cluster: a result the client could not get is asked for once more."""
 
+import time
 from dataclasses import dataclass
 
 import pytest
@@ -62,3 +63,30 @@ def test_a_task_that_killed_its_workers_is_not_sent_again(monkeypatch):
     got = _graded(monkeypatch, killing_grading, ["eve"])
     assert "the cluster could not grade it: KilledWorker" in got["eve"]["error"]
     assert KILLS == ["eve"] * (1 + cluster.RETRIES)   # (the scheduler's runs only)
+
+
+ORDER = []
+
+
+def hanging_grading(files, *arguments):
+    student = arguments[-3]
+    ORDER.append(student)
+    if student == "slow":
+        time.sleep(3.0)   # (a grading that never ends, as far as a 1 s bound is concerned)
+    return {"graded": student}
+
+
+def test_a_grading_running_past_the_overdue_bound_is_stopped_and_the_others_graded(monkeypatch):
+    """One worker thread: "slow" runs past the bound and is told it was stopped (not sent again); "queued" waits
+    behind it on the same thread, and its bound counts from when it starts, so it is graded, not stopped."""
+    monkeypatch.setattr(cluster, "grade_files", hanging_grading)
+    monkeypatch.setattr(cluster, "POLL_SECONDS", 0.2)
+    got = {}
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0") as local, \
+            distributed.Client(local) as client:
+        cluster.grade_on_dask(local.scheduler_address, [Entry(s) for s in ("slow", "queued")], (),
+                              lambda entry, outcome: got.setdefault(entry.student_id, outcome), client=client,
+                              overdue=1.0)
+    assert "the grading was stopped after 1 s on the cluster" in got["slow"]["error"], got
+    assert got["queued"] == {"graded": "queued"}
+    assert ORDER == ["slow", "queued"]   # (queued behind the slow one: more than 1 s after it was handed out)
