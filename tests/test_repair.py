@@ -5860,6 +5860,18 @@ def test_a_fix_given_to_one_factor_of_a_pair_is_a_change_made_to_both():
     fixed = source.replace("    K = K @ D\n", "    K = K @ D\n    R = D @ R\n")
     assert fixed != source
     assert _shown_changes(fixed, "factor_pair") == []
+    # (factors made each from one of a pair unpacked together: K = inv(U), R = Q.T of Q, U = qr(inv(M)))
+    through_qr = textwrap.dedent("""
+        import numpy as np
+        def graded(M):
+            Q, U = np.linalg.qr(np.linalg.inv(M))
+            K = np.linalg.inv(U)
+            R = Q.T
+            D = np.diag(np.sign(np.diag(K)))
+            K = K @ D
+            return K, R
+    """)
+    assert ("K = K @ D", "K, R = (K @ D, D @ R)") in _shown_changes(through_qr, "factor_pair")
 
 
 def test_a_sign_fix_made_to_k_alone_is_named_with_the_change_that_gives_r_its_rows(tmp_path):
@@ -5928,3 +5940,22 @@ def test_a_call_given_every_point_is_offered_the_points_a_mask_keeps():
     assert changes[0] == ("fit(src, dst)", "fit(src[best], dst[best])"), changes
     assert ("fit(src, dst)", "fit(src[inliers], dst[inliers])") in changes
     assert not any(before.startswith(("fit(src[", "fit(other")) for before, _ in changes), changes
+
+
+def test_a_raw_input_read_where_a_value_made_from_it_belongs_is_offered_the_last_made_first():
+    """`w = pts[:, 2]` (the world points' Z) where the projected points' third coordinate belongs: the values made
+    from `pts` since -- `Xh`, then `x = P @ Xh`, made from it through `Xh` -- are offered in its place, the last
+    made first; a name given a value of another making since is not one of them."""
+    source = textwrap.dedent("""
+        import numpy as np
+        def graded(P, points):
+            pts = np.atleast_2d(points)
+            Xh = np.hstack([pts, np.ones((len(pts), 1))])
+            x = (P @ Xh.T).T
+            Xh = np.eye(4)
+            w = pts[:, 2]
+            return x[:, :2] / w[:, None]
+    """)
+    offered = [after for before, after in _shown_changes(source, "other_name") if before == "w = pts[:, 2]"]
+    assert offered[0] == "w = x[:, 2]", offered
+    assert "w = Xh[:, 2]" not in offered[:1]

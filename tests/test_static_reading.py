@@ -2042,3 +2042,21 @@ def test_a_pyramid_of_uint8_images_is_read_as_uint8_where_its_levels_are_subtrac
             return both
         """
     assert "uint8 arithmetic wraps around" not in one(concatenated, api={"blend_multiband"})
+
+
+def test_opencv_arithmetic_on_uint8_images_is_read_as_saturating():
+    """`cv2.subtract(level, up)` on uint8 levels saturates (the negative half of a band is lost); NumPy's wraps;
+    either given a dtype, or on converted images, is not read."""
+    source = """
+        def blend_multiband(img1, img2, mask, levels=4):
+            g = [img1.copy()]
+            for i in range(levels - 1):
+                g.append(cv2.pyrDown(g[-1]))
+            return [{sub}(g[i], cv2.pyrUp(g[i + 1]){extra}) for i in range(levels - 1)]
+        """
+    assert "uint8 arithmetic saturates" in one(source.format(sub="cv2.subtract", extra=""), api={"blend_multiband"})
+    assert "uint8 arithmetic wraps around" in one(source.format(sub="np.subtract", extra=""), api={"blend_multiband"})
+    typed = source.format(sub="cv2.subtract", extra=", dtype=cv2.CV_32F")
+    assert not {"uint8 arithmetic saturates", "uint8 arithmetic wraps around"} & one(typed, api={"blend_multiband"})
+    floats = source.format(sub="cv2.subtract", extra="").replace("img1.copy()", "img1.astype(np.float32)")
+    assert "uint8 arithmetic saturates" not in one(floats, api={"blend_multiband"})

@@ -641,7 +641,22 @@ def _uint8_arithmetic(name, function, parameters) -> list[Finding]:
                                 f"{name} (line {_line(node)}) computes {ast.unparse(node)[:60]} on uint8 "
                                 "images: uint8 arithmetic wraps around (200 + 100 gives 44, 3 - 5 gives "
                                 "254); convert first: image.astype(np.float32)")]
+        if isinstance(node, ast.Call) and _call_name(node) in ("subtract", "add") and len(node.args) >= 2 \
+                and all(_is_uint8_expression(side, images, lists) for side in node.args[:2]) \
+                and not any(k.arg == "dtype" for k in node.keywords):
+            # (OpenCV's saturate at 0 and 255 -- a band-pass level's negative half is lost -- NumPy's wrap round)
+            opencv = isinstance(node.func, ast.Attribute) and _dotted_name(node.func.value) == "cv2"
+            effect = ("OpenCV's uint8 arithmetic saturates (3 - 5 gives 0, 200 + 100 gives 255): the negative "
+                      "values are lost" if opencv else
+                      "uint8 arithmetic wraps around (200 + 100 gives 44, 3 - 5 gives 254)")
+            return [Finding(name, _line(node), "uint8 arithmetic saturates" if opencv else "uint8 arithmetic wraps around",
+                            f"{name} (line {_line(node)}) computes {ast.unparse(node)[:60]} on uint8 images: "
+                            f"{effect}; convert first: image.astype(np.float32)")]
     return []
+
+
+def _dotted_name(node) -> str:
+    return node.id if isinstance(node, ast.Name) else ""
 
 
 # ------------------------------------------------------------------ homogeneous coordinates

@@ -5779,29 +5779,68 @@ def _factor_pair(node, words):
     """A fix made to one factor of a product and not undone in the other: `K, R = rq(M)` then `K = K @ D`
     (K's columns given the signs that make its diagonal positive) with R's rows left as they were, so
     K @ R is no longer M: the pair changed together, `K, R = K @ D, D @ R` (a sign matrix is its own
-    inverse; any other matrix's inverse is tried too). The left factor is fixed on its right, the right
-    factor on its left; the other factor is not assigned again after the fix."""
+    inverse; any other matrix's inverse is tried too). The factors are two names unpacked together, or
+    made each from one of two names unpacked together (`Q, U = np.linalg.qr(...)`, `K = inv(U)`, `R = Q.T`);
+    the other factor is not given a value again after the fix."""
     if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)
             and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, ast.MatMult)):
         return
     name, product = node.targets[0].id, node.value
-    for position, (mine, fix) in enumerate(((product.left, product.right), (product.right, product.left))):
+    for on_the_right, (mine, fix) in enumerate(((product.right, product.left), (product.left, product.right))):
+        # (`K @ D`: on_the_right 1, the fix applied on K's right; `D @ R`: 0, on its left)
         if not (isinstance(mine, ast.Name) and mine.id == name) or name in _read(fix):
             continue
-        for line, value, index in words.definitions.get(name, ()):
-            if index is None or line >= node.lineno or not isinstance(value, ast.Call):
+        for other in _factor_partners(name, node.lineno, words):
+            text = ast.unparse(fix)
+            if other in _read(fix) or any(at > node.lineno for at, _, _ in words.definitions[other]) \
+                    or _given_already(other, text, node.lineno, words):
                 continue
-            partners = [other for other, defs in words.definitions.items() if other != name
-                        and any(at == line and v is value and i == 1 - index for at, v, i in defs)]
-            # (the left factor (index 0) is fixed on its right (position 0), the right factor on its left)
-            if len(partners) != 1 or index != position or partners[0] in _read(fix) or any(
-                    at > line and at != node.lineno for at, _, _ in words.definitions[partners[0]]):
-                continue
-            other, text = partners[0], ast.unparse(fix)
             fix_text = text if isinstance(fix, (ast.Name, ast.Attribute, ast.Subscript, ast.Call)) else f"({text})"
             for undone in (fix_text, f"np.linalg.inv({text})"):
-                yield "factor_pair", (other, f"{undone} @ {other}" if index == 0 else f"{other} @ {undone}"), ""
-            return
+                yield "factor_pair", (other, f"{undone} @ {other}" if on_the_right else f"{other} @ {undone}"), ""
+        return
+
+
+def _given_already(name: str, fix: str, line: int, words) -> bool:
+    """Whether ``name`` was last given, above ``line``, a product with ``fix`` as a factor (`K = K @ D` above
+    `R = D @ R`: the pair is fixed)."""
+    defs = [d for d in words.definitions.get(name, ()) if d[0] < line]
+    value = max(defs, key=lambda d: d[0])[1] if defs else None
+    return isinstance(value, ast.BinOp) and isinstance(value.op, ast.MatMult) \
+        and fix in (ast.unparse(value.left), ast.unparse(value.right))
+
+
+def _factor_partners(name: str, line: int, words) -> list:
+    """The names made with ``name`` as two factors of one decomposition, as they stand above ``line``: unpacked
+    together from one call (`K, R = rq(M)`), or each made from one of two names so unpacked (`K = inv(U)`,
+    `R = Q.T` of `Q, U = qr(...)`)."""
+    def last(of):
+        defs = [d for d in words.definitions.get(of, ()) if d[0] < line]
+        return max(defs, key=lambda d: d[0]) if defs else None
+
+    def unpacked_with(of):
+        made = last(of)
+        if made is None or made[2] is None or not isinstance(made[1], ast.Call):
+            return []
+        at, value, index = made
+        return [o for o, defs in words.definitions.items() if o != of and any(
+            a == at and v is value and i is not None and i != index for a, v, i in defs)]
+
+    def made_from(of):
+        made = last(of)
+        if made is None or made[2] is not None or isinstance(made[1], ast.AugAssign):
+            return None
+        sources = [n for n in _read(made[1]) if n in words.definitions and n != of]
+        return sources[0] if len(sources) == 1 else None
+    partners = unpacked_with(name)
+    if partners:
+        return partners
+    source = made_from(name)
+    if source is None:
+        return []
+    twins = unpacked_with(source)
+    # (the local made from the source's twin alone: `R = Q.T` beside `K = inv(U)`, names of two or more letters too)
+    return [o for o in words.definitions if o != name and made_from(o) in twins][:2] if twins else []
 
 
 def _boolean_made(value) -> bool:
@@ -7632,11 +7671,38 @@ def _copies_of(name: str, words, line: int) -> set:
 
 
 def _made_from_since(words: _Words, other: str, name: str, line: int) -> bool:
-    """Whether ``other``'s last value before ``line`` reads ``name`` and was made after ``name``'s own last value."""
+    """Whether ``other``'s last value before ``line`` was made from ``name`` -- reading it, or a value made from it
+    in turn (`Xh = np.hstack([pts, 1])`, then `x = P @ Xh`: both made from `pts`) -- after ``name``'s own last value."""
     given = [at for at, _, _ in words.definitions.get(name, ()) if at < line]
-    last = [d for d in words.definitions.get(other, ()) if d[0] < line]
-    return bool(given and last) and last[-1][0] > given[-1] \
-        and any(isinstance(n, ast.Name) and n.id == name for n in walk(last[-1][1]))
+    if not given:
+        return False
+    return other in _made_since(words, name, given[-1], line)
+
+
+def _made_since(words: _Words, name: str, since: int, line: int) -> frozenset:
+    """The locals whose last value before ``line``, given after line ``since``, is made from ``name`` directly or
+    through one another (one pass over the def's assignments, read once per def; kept per name and lines)."""
+    if not hasattr(words, "_assignments_read"):
+        words._assignments_read = sorted(
+            (at, other, frozenset(n.id for n in walk(value) if isinstance(n, ast.Name)))
+            for other, defs in words.definitions.items() for at, value, _ in defs)
+        words._made_since = {}
+    key = (name, since, line)
+    if key not in words._made_since:
+        made, sources = set(), {name}
+        for at, other, reads in words._assignments_read:   # (in the order they were made: each may read the ones before)
+            if at >= line:
+                break
+            if at <= since or other == name:
+                continue
+            if reads & sources:
+                made.add(other)
+                sources.add(other)
+            else:   # (given a value of another making since: its last value is not made from the name)
+                made.discard(other)
+                sources.discard(other)
+        words._made_since[key] = frozenset(made)
+    return words._made_since[key]
 
 
 def _name_changes(node: ast.Name, words: _Words, what, line):
@@ -7699,7 +7765,9 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
     # (not one `derived_name` offers, beside a sibling read in that form: told as that)
     converted = {other for other, _ in others if words.student and _made_from_since(words, other, node.id, line)}
     converted -= {name for _, name, _ in _raw_beside_derived(node, words)} if converted else set()
-    others.sort(key=lambda pair: (pair[0] not in unread, pair[0] not in converted,
+    # (of the values made from it, the last made first: the one nearest the use, `x = P @ Xh` before `Xh`)
+    made_at = {other: max(d[0] for d in words.definitions[other] if d[0] < line) for other in converted}
+    others.sort(key=lambda pair: (pair[0] not in unread, pair[0] not in converted, -made_at.get(pair[0], 0),
                                   pair[0].lower() != node.id.lower(), pair[0] not in together,
                                   not twin_names(node.id, pair[0]),
                                   not _derived_names(node.id, pair[0]) and not _one_stem(node.id, pair[0]),
