@@ -2060,3 +2060,24 @@ def test_opencv_arithmetic_on_uint8_images_is_read_as_saturating():
     assert not {"uint8 arithmetic saturates", "uint8 arithmetic wraps around"} & one(typed, api={"blend_multiband"})
     floats = source.format(sub="cv2.subtract", extra="").replace("img1.copy()", "img1.astype(np.float32)")
     assert "uint8 arithmetic saturates" not in one(floats, api={"blend_multiband"})
+
+
+def test_a_helper_giving_back_its_images_dtype_keeps_a_uint8_image_uint8():
+    """`left - _shift_right(right, d)` where the module's `_shift_right` fills `np.empty_like(image)` from its image:
+    the difference is of two uint8 images; a helper converting its image first gives floats."""
+    source = """
+        def _shift_right(image, d):
+            if d == 0:
+                return image
+            out = np.empty_like(image)
+            out[:, d:] = image[:, :-d]
+            return out
+
+        def block_matching(left, right, max_disparity=64, block_size=9):
+            for d in range(max_disparity + 1):
+                diff = left - _shift_right(right, d)
+            return diff
+        """
+    assert "uint8 arithmetic wraps around" in one(source, api={"block_matching"})
+    converting = source.replace("out = np.empty_like(image)", "out = np.empty_like(image, dtype=np.float32)")
+    assert "uint8 arithmetic wraps around" not in one(converting, api={"block_matching"})

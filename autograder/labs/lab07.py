@@ -9,6 +9,7 @@ feedback can name the mistake.
 from __future__ import annotations
 
 import ast
+import re
 
 import numpy as np
 
@@ -71,19 +72,35 @@ guard(truth.INVERSE_MAP, asks=~(calls_any("np.linalg.inv", "np.linalg.pinv", "cv
               "source at A x applies the inverse of A)")
 
 # skimage.transform.warp's transform is the inverse map (each output pixel's source), where OpenCV's
-# warps take the forward one: a forward transform passed to it moves the image the other way. Every
-# name of an image moved the other way is told so to code that warps with it and never inverts.
+# warps take the forward one: a forward transform passed to it moves the image the other way. So does
+# cv2.WARP_INVERSE_MAP with the lab's forward matrix never inverted -- in a shared warp helper too, where
+# the matrix itself is right. Every name of an image moved the other way is told so to such code: the fact
+# measured (the part of the name before its colon) and the step read, never the name's cause in the matrix
+# (the lecture's R(theta), a shear's sign), which the matrix's own checks judge.
 SKIMAGE_FORWARD = (calls("skimage.transform.warp") & ~uses_attr(".inverse")
                    & ~calls_any("np.linalg.inv", "np.linalg.pinv", "cv2.invertAffineTransform")).saying(
-    "warps with skimage.transform.warp and never inverts the transform")
-SKIMAGE_INVERSE_MAP = from_code("your code warps with skimage.transform.warp, whose transform maps each output pixel to the "
-                       "input pixel it samples (the inverse map), where the lab's matrix maps input to output: "
-                       "pass tform.inverse (or the inverse matrix)")
+    "warps with skimage.transform.warp, whose transform maps each output pixel to the input pixel it samples (the "
+    "inverse map), where the lab's matrix maps input to output: pass tform.inverse (or the inverse matrix)")
+def _flags_invert(function) -> bool:
+    """A warp given cv2.WARP_INVERSE_MAP as its flags (`flags=...`, or its fifth argument: the fourth is `dst`)."""
+    for node in walk(function):
+        if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] in ("warpAffine", "warpPerspective"):
+            given = [k.value for k in node.keywords if k.arg == "flags"] + node.args[4:5]
+            if any(_path(n) == "cv2.WARP_INVERSE_MAP" for flag in given for n in walk(flag)):
+                return True
+    return False
+
+
+INVERSE_FLAG = (Predicate("passes cv2.WARP_INVERSE_MAP", _flags_invert)
+                & ~calls_any("np.linalg.inv", "np.linalg.pinv", "cv2.invertAffineTransform")).saying(
+    "passes cv2.WARP_INVERSE_MAP, with which cv2.warpAffine reads the matrix as the map from each output pixel to "
+    "the input pixel it samples (the inverse map), where the lab's matrix maps input to output: take the flag out")
 OTHER_WAY = sorted({name for mistakes in (truth.translation_mistakes(3.0, 4.0), truth.rotation_mistakes(30.0, (5.0, 7.0)),
                                            truth.scaling_mistakes(2.0, 3.0), truth.shear_mistakes(0.3))
                      for name in mistakes if "opposite way" in name or "inverted" in name or "inverse map" in name})
 for _other_way in OTHER_WAY:
-    guard(_other_way, asks=SKIMAGE_FORWARD, instead=f"{_other_way}: {SKIMAGE_INVERSE_MAP}")
+    _measured = re.split(r": | \(", _other_way)[0].replace("has the wrong sign", "goes the opposite way")
+    guard(_other_way, asks=SKIMAGE_FORWARD | INVERSE_FLAG, instead=f"{_measured}: your code {{found}}")
 
 
 # scipy.ndimage indexes arrays (row, col) = (y, x): a map written in (x, y) there acts on the other axis, which is

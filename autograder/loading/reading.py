@@ -139,10 +139,12 @@ def read_source(text: str, api=frozenset()) -> Reading:
                            for target in node.targets if isinstance(target, ast.Name))
         # (and its helpers that filter their first parameter: `_box_mean(cost, k)` is a cv2.blur)
         filtering = frozenset(_FILTERS) | frozenset(name for name, node in functions.items() if _filters_first(node))
+        # (and its helpers that give back their first argument's dtype: `_shift_right(image, d)` of a uint8 image)
+        keeping = frozenset(name for name, node in functions.items() if _safely_bool(_keeps_first_dtype, node))
         findings, calls = {}, {}
         rows = {name: _read_as_rows(node) for name, node in functions.items()}
         for name, node in functions.items():
-            findings[name] = _read_function(node, name in api, lists) \
+            findings[name] = _read_function(node, name in api, lists, keeping) \
                 + _safely(_transposed_into_rows, name, node, functions, rows) \
                 + _safely(_module_array_changed, name, node, arrays) + _safely(_infinity_filtered, name, node, filtering)
             calls[name] = {called for called in _called_names(node) if called in functions and called != name}
@@ -222,7 +224,15 @@ def _safely(reader, *args) -> list[Finding]:
         return []
 
 
-def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset()) -> list[Finding]:
+def _safely_bool(reader, *args) -> bool:
+    """``reader(*args)``, or False where it fails on code nobody foresaw (as :func:`_safely`)."""
+    try:
+        return bool(reader(*args))
+    except (ValueError, TypeError, AttributeError, IndexError, KeyError, StopIteration):
+        return False
+
+
+def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset(), keeping=frozenset()) -> list[Finding]:
     name = function.name
     parameters = {a.arg for a in function.args.args + function.args.kwonlyargs + function.args.posonlyargs}
     images = parameters if api else set()
@@ -230,7 +240,7 @@ def _read_function(function: ast.FunctionDef, api: bool = False, lists=frozenset
     found += _safely(_eig_unsorted, name, function)
     found += _safely(_integer_arrays, name, function)
     found += _safely(_floor_division, name, function)
-    found += _safely(_uint8_arithmetic, name, function, images)
+    found += _safely(_uint8_arithmetic, name, function, images, keeping)
     found += _safely(_homogeneous_zero, name, function)
     found += _safely(_query_train, name, function)
     found += _safely(_mask_as_index, name, function)
@@ -553,18 +563,20 @@ def _to_float(node) -> bool:
     return False
 
 
-def _uint8_names(function, parameters) -> set[str]:
-    """Names that surely hold uint8 images: image parameters never bound to anything else, and
-    what image functions, slices, copies and ``zeros_like`` make of them (a name bound even
-    once to something else -- a conversion, a call the reading cannot follow -- is not one)."""
+def _uint8_names(function, parameters, keeping=frozenset(), seeds=None) -> set[str]:
+    """Names that surely hold uint8 images: image parameters (or ``seeds``) never bound to anything else,
+    and what image functions, slices, copies, ``zeros_like`` and the module's helpers ``keeping`` their
+    first argument's dtype make of them (a name bound even once to something else -- a conversion, a call
+    the reading cannot follow -- is not one)."""
     assigned = _assigned_names(function)
-    images = {p for p in parameters if p in IMAGE_PARAMETERS}
+    seeds = {p for p in parameters if p in IMAGE_PARAMETERS} if seeds is None else set(seeds)
+    images = set(seeds)
     for _ in range(4):   # a few rounds: names made from names made from images
         changed = False
         for target, values in assigned.items():
-            uint8 = bool(values) and all(_is_uint8_expression(value, images | {target}) for value in values)
-            if target in parameters and target in IMAGE_PARAMETERS:
-                uint8 = all(_is_uint8_expression(value, images | {target}) for value in values)
+            uint8 = bool(values) and all(_is_uint8_expression(value, images | {target}, keeping=keeping) for value in values)
+            if target in seeds:
+                uint8 = all(_is_uint8_expression(value, images | {target}, keeping=keeping) for value in values)
             if uint8 and target not in images:
                 images.add(target)
                 changed = True
@@ -576,7 +588,7 @@ def _uint8_names(function, parameters) -> set[str]:
     return images
 
 
-def _uint8_lists(function, images) -> set[str]:
+def _uint8_lists(function, images, keeping=frozenset()) -> set[str]:
     """Names that surely hold lists of uint8 images (a pyramid: `g = [img]`, then `g.append(cv2.pyrDown(g[i]))`):
     bound only to list displays of uint8 images, and given only uint8 images by `.append`/`.insert`."""
     assigned = _assigned_names(function)
@@ -585,7 +597,7 @@ def _uint8_lists(function, images) -> set[str]:
     for _ in range(4):
         def uint8(node) -> bool:
             return (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Name) and node.value.id in lists) \
-                or _is_uint8_expression(node, images, lists)
+                or _is_uint8_expression(node, images, lists, keeping)
         kept = {name for name in lists if all(uint8(e) for v in assigned[name] for e in v.elts)}
         for node in _nodes(function):
             if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in ("append", "insert") \
@@ -603,46 +615,60 @@ def _uint8_lists(function, images) -> set[str]:
     return lists
 
 
-def _is_uint8_expression(node, images, lists=frozenset()) -> bool:
+def _is_uint8_expression(node, images, lists=frozenset(), keeping=frozenset()) -> bool:
     """Whether ``node`` surely holds a uint8 image: one of ``images``, an item of one of ``lists`` (lists of
-    uint8 images), a slice or a copy of one, what an image function makes of one."""
+    uint8 images), a slice or a copy of one, what an image function or a helper of the module ``keeping`` its
+    first argument's dtype makes of one."""
     if isinstance(node, ast.Name):
         return node.id in images
     if isinstance(node, ast.Subscript):
         if isinstance(node.value, ast.Name) and node.value.id in lists:
             return True
-        return _is_uint8_expression(node.value, images, lists)
+        return _is_uint8_expression(node.value, images, lists, keeping)
     if isinstance(node, ast.Call):
+        if isinstance(node.func, ast.Name) and node.func.id in keeping and node.args:
+            return _is_uint8_expression(node.args[0], images, lists, keeping)
         call = _call_name(node)
         if call in {"copy", "zeros_like", "empty_like", "roll", "ascontiguousarray"} and not any(
                 k.arg == "dtype" for k in node.keywords):
             receiver = node.func.value if isinstance(node.func, ast.Attribute) and call == "copy" else \
                 (node.args[0] if node.args else None)
-            return receiver is not None and _is_uint8_expression(receiver, images, lists)
+            return receiver is not None and _is_uint8_expression(receiver, images, lists, keeping)
         if call in IMAGE_FUNCTIONS and node.args:
-            return _is_uint8_expression(node.args[0], images, lists)
+            return _is_uint8_expression(node.args[0], images, lists, keeping)
     return False
 
 
-def _uint8_arithmetic(name, function, parameters) -> list[Finding]:
-    images = _uint8_names(function, parameters)
+def _keeps_first_dtype(function) -> bool:
+    """Whether every value ``function`` returns is its first parameter's dtype, read as a uint8 image: itself,
+    a copy or slice of it, `np.empty_like(image)` filled from it (a helper shifting an image by d columns)."""
+    parameters = [a.arg for a in function.args.posonlyargs + function.args.args]
+    if not parameters:
+        return False
+    images = _uint8_names(function, set(parameters), seeds={parameters[0]})
+    returned = [n.value for n in _nodes(function) if isinstance(n, ast.Return)]
+    return bool(returned) and all(v is not None and _is_uint8_expression(v, images) for v in returned)
+
+
+def _uint8_arithmetic(name, function, parameters, keeping=frozenset()) -> list[Finding]:
+    images = _uint8_names(function, parameters, keeping)
     if not images:
         return []
-    lists = _uint8_lists(function, images)
+    lists = _uint8_lists(function, images, keeping)
     for node in _nodes(function):
         if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub, ast.Mult, ast.Pow)):
             sides = (node.left, node.right)
             if isinstance(node.op, ast.Pow):
-                wraps = _is_uint8_expression(node.left, images, lists)
+                wraps = _is_uint8_expression(node.left, images, lists, keeping)
             else:
-                wraps = all(_is_uint8_expression(side, images, lists) for side in sides)
+                wraps = all(_is_uint8_expression(side, images, lists, keeping) for side in sides)
             if wraps:
                 return [Finding(name, _line(node), "uint8 arithmetic wraps around",
                                 f"{name} (line {_line(node)}) computes {ast.unparse(node)[:60]} on uint8 "
                                 "images: uint8 arithmetic wraps around (200 + 100 gives 44, 3 - 5 gives "
                                 "254); convert first: image.astype(np.float32)")]
         if isinstance(node, ast.Call) and _call_name(node) in ("subtract", "add") and len(node.args) >= 2 \
-                and all(_is_uint8_expression(side, images, lists) for side in node.args[:2]) \
+                and all(_is_uint8_expression(side, images, lists, keeping) for side in node.args[:2]) \
                 and not any(k.arg == "dtype" for k in node.keywords):
             # (OpenCV's saturate at 0 and 255 -- a band-pass level's negative half is lost -- NumPy's wrap round)
             opencv = isinstance(node.func, ast.Attribute) and _dotted_name(node.func.value) == "cv2"

@@ -741,7 +741,7 @@ MISTAKES = {
             h, w = image.shape[:2]
             return cv2.warpAffine(image, shear_matrix(s)[:2], (w, h),
                                   flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
-        """, ["wrong sign", "inverse map"]),
+        """, ["opposite way", "warp_inverse_map", "take the flag out"]),
     "affine without the column of ones": ("lab07.ex5", """
         def affine_from_points(src, dst):
             L = np.linalg.lstsq(np.asarray(src, float), np.asarray(dst, float), rcond=None)[0].T
