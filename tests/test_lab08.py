@@ -430,3 +430,21 @@ def test_a_refit_after_the_loop_on_every_pair_is_read_where_it_is(tmp_path, refi
     trial = SimpleNamespace(sandbox=SimpleNamespace(submission_dir=folder), lab=SimpleNamespace(module="lab08_homographies"))
     found = _refit_on_every_pair(trial)
     assert (found is None) if told is None else (found is not None and found.startswith(told + ", line ")), found
+
+
+def test_a_fallback_marking_every_pair_is_read_where_it_is(tmp_path):
+    """The branch returning every pair as inliers (`np.ones(n, dtype=bool)` in an `if`), read with its line: a mask
+    marking every pair beside a wrong H is told as that fallback, not as a mask of its own making; code returning
+    its mask alone has no such branch."""
+    from types import SimpleNamespace
+
+    from autograder.labs.lab08 import _every_pair_fallback
+    folder = mutant(tmp_path, "lab08_homographies", RANSAC_REFIT_ON.replace("{refit}", "H = homography_dlt(src, dst)"))
+    trial = SimpleNamespace(sandbox=SimpleNamespace(submission_dir=folder), lab=SimpleNamespace(module="lab08_homographies"))
+    found = _every_pair_fallback(trial)
+    assert found is not None and found.startswith("`return (homography_dlt(src, dst), np.ones(len(src), dtype=bool))`"), found
+    without = RANSAC_REFIT_ON.replace("{refit}", "H = homography_dlt(src, dst)").replace(
+        "        return homography_dlt(src, dst), np.ones(len(src), dtype=bool)\n", "        raise ValueError('too few')\n")
+    folder = mutant(tmp_path / "without", "lab08_homographies", without)
+    trial = SimpleNamespace(sandbox=SimpleNamespace(submission_dir=folder), lab=SimpleNamespace(module="lab08_homographies"))
+    assert _every_pair_fallback(trial) is None

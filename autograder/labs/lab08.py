@@ -1510,6 +1510,37 @@ def _refit_on_every_pair(t: Trial) -> str | None:
     return None
 
 
+def _every_pair_fallback(t: Trial) -> str | None:
+    """The student's RANSAC marking every pair in a branch of its own (`if best_count < 4: return
+    homography_dlt(src, dst), np.ones(n, dtype=bool)`): "`return ...`, line 199", or None."""
+    def every_pair(node) -> bool:
+        return isinstance(node, ast.Call) and (
+            _path(node.func).rsplit(".", 1)[-1] in ("ones", "ones_like")
+            and any(k.arg == "dtype" and ast.unparse(k.value) in ("bool", "np.bool_") for k in node.keywords)
+            or _path(node.func).rsplit(".", 1)[-1] in ("full", "full_like") and len(node.args) >= 2
+            and isinstance(node.args[1], ast.Constant) and node.args[1].value is True)
+    for function in code_of(t).reachable(["homography_ransac"]):
+        for branch in walk(function):
+            if not isinstance(branch, ast.If):
+                continue
+            for statement in branch.body:
+                if isinstance(statement, ast.Return) and any(every_pair(n) for n in walk(statement)):
+                    return f"`{' '.join(ast.unparse(statement).split())[:80]}`, line {statement.lineno}"
+    return None
+
+
+def _fallback_said(t: Trial, what: str) -> bool:
+    """Fail ``what`` (a mask marking every pair beside a wrong H) as the fallback it is, where the code has one:
+    the loop kept no model with enough inliers, so its models are wrong first. Whether it was said."""
+    fallback = _every_pair_fallback(t)
+    if fallback is None:
+        return False
+    t.fail(measured(f"{what}: the mask marks every pair, and your H agrees with few of them: your code does that in its "
+                    f"fallback ({fallback}), taken when its loop keeps no model with enough inliers -- the models it "
+                    "draws are wrong first (the checks of H say where)."))
+    return True
+
+
 def _refit_claim(t: Trial) -> str | None:
     where = _refit_on_every_pair(t)
     return None if where is None else (
@@ -1895,6 +1926,8 @@ def ransac_mask_of_h(t):
                     "the pairs the returned H sends within the threshold (|H src - dst| < threshold)")
         # Not H's inliers at any threshold, in either direction, nor inverted: measured, the mask is
         # no function of the distances to H, so the two do not come from one model.
+        if inliers.all() and not right_h:   # (a fallback to every pair beside a wrong H: the H is wrong first)
+            _fallback_said(t, what)
         if inliers.all():   # every pair marked: a set within some distance, but not the threshold's
             t.fail(f"{measured}: the mask marks every pair, as if every pair counted as an inlier, although your "
                    f"H sends {int(far.sum())} of them beyond the threshold.",
@@ -2046,6 +2079,8 @@ def ransac_near_outliers(t):
         return passed(f"{NEAR_COUNT - taken} of the {NEAR_COUNT} pairs a few pixels off are left out")
     with np.errstate(all="ignore"):
         errors = np.linalg.norm(truth.apply_h(np.asarray(H, np.float64), src) - dst, axis=1)
+    if inliers.all() and (errors < 3.0).mean() < 0.5:
+        _fallback_said(t, what)
     t.fail(measured(f"{what}: {taken} of those {NEAR_COUNT} pairs are marked as inliers, with errors "
                     f"|H src - dst| up to {np.nanmax(errors[inliers & near]):.1f} px under your own H: the mask "
                     "acts as if the threshold were larger than 3 px (a pair is an inlier when |H src - dst| < "
