@@ -2081,3 +2081,22 @@ def test_a_helper_giving_back_its_images_dtype_keeps_a_uint8_image_uint8():
     assert "uint8 arithmetic wraps around" in one(source, api={"block_matching"})
     converting = source.replace("out = np.empty_like(image)", "out = np.empty_like(image, dtype=np.float32)")
     assert "uint8 arithmetic wraps around" not in one(converting, api={"block_matching"})
+
+
+def test_a_fundamental_matrix_given_to_recover_pose_beside_the_essential_one_made_is_told_to_give_that():
+    """`E = essential_from_fundamental(F, K, K)` made, then `cv2.recoverPose(F, ...)`: the sentence points at the E
+    the code made, not at making one; code that makes none is told to make it."""
+    source = """
+        def two_view_reconstruction(img1, img2, K):
+            F, mask = cv2.findFundamentalMat(pts1, pts2, cv2.FM_RANSAC, 1.0, 0.999)
+            E = essential_from_fundamental(F, K, K)
+            _, R, t, m = cv2.recoverPose(F, pts1, pts2, K)
+            return R, t
+        """
+    [finding] = [f for f in read_source(textwrap.dedent(source), {"two_view_reconstruction"}).findings[
+        "two_view_reconstruction"] if f.mistake == "a fundamental matrix given where the essential matrix belongs"]
+    assert "makes the essential matrix `E` at line 4: give cv2.recoverPose `E` instead of `F`" in finding.sentence
+    without = source.replace("            E = essential_from_fundamental(F, K, K)\n", "")
+    [finding] = [f for f in read_source(textwrap.dedent(without), {"two_view_reconstruction"}).findings[
+        "two_view_reconstruction"] if f.mistake == "a fundamental matrix given where the essential matrix belongs"]
+    assert "make E = K2^T F K1 first" in finding.sentence

@@ -3051,12 +3051,31 @@ def _fundamental_as_essential(name, function) -> list[Finding]:
         last = _binding_above(bindings, given, line)
         if last is not None and isinstance(last[1], ast.Call) and _call_name(last[1]) in _FUNDAMENTAL_MAKERS \
                 and last[2] in (None, 0):
+            made = _essential_made_from(bindings, given, last[0], line)
+            fix = (f"your code makes the essential matrix `{made[0]}` at line {made[1]}: give cv2.{_call_name(node)} "
+                   f"`{made[0]}` instead of `{given}`" if made else
+                   "make E = K2^T F K1 first (essential_from_fundamental)")
             return [Finding(name, line, "a fundamental matrix given where the essential matrix belongs",
                             f"{name} (line {line}) gives cv2.{_call_name(node)} `{given}`, the fundamental matrix "
                             f"made at line {last[0]}, where it takes the essential matrix: F acts on pixels, "
-                            "E on coordinates normalised by K; make E = K2^T F K1 first (essential_from_fundamental)",
-                            certain=True)]
+                            f"E on coordinates normalised by K; {fix}", certain=True)]
     return []
+
+
+def _essential_made_from(bindings: dict, fundamental: str, since: int, line: int) -> tuple[str, int] | None:
+    """(name, line) of an essential matrix the code makes from ``fundamental`` between lines ``since`` and ``line``:
+    `E = essential_from_fundamental(F, K, K)`, or a matrix product reading F (`E = K.T @ F @ K`)."""
+    for other, found in bindings.items():
+        if other == fundamental:
+            continue
+        for at, value, _ in found:
+            if not since < at < line:
+                continue
+            reads = {n.id for n in walk(value) if isinstance(n, ast.Name)} if value is not _UNKNOWN else set()
+            if fundamental in reads and ((isinstance(value, ast.Call) and "essential" in _call_name(value).lower())
+                                         or (isinstance(value, ast.BinOp) and isinstance(value.op, ast.MatMult))):
+                return other, at
+    return None
 
 
 # ------------------------------------------------------------------ an eigenvector taken as a row
