@@ -5839,8 +5839,10 @@ def _factor_partners(name: str, line: int, words) -> list:
     if source is None:
         return []
     twins = unpacked_with(source)
-    # (the local made from the source's twin alone: `R = Q.T` beside `K = inv(U)`, names of two or more letters too)
-    return [o for o in words.definitions if o != name and made_from(o) in twins][:2] if twins else []
+    # (the local made from the source's twin alone: `R = Q.T` beside `K = inv(U)`; among the locals last given
+    # above the line, a bounded number of them: a long def is read in linear time)
+    return [o for o in words.locals_before(line, nearest=_NEAREST_LOCALS) if o != name and made_from(o) in twins][:2] \
+        if twins else []
 
 
 def _boolean_made(value) -> bool:
@@ -5853,16 +5855,20 @@ def _boolean_made(value) -> bool:
 def _masks_held(fn) -> frozenset:
     """The names ``fn`` gives a mask at some point -- a comparison, a new boolean array, another such name
     (`best = np.zeros(n, dtype=bool)`, later `best = inliers`) -- looser than :func:`_mask_names` (a name
-    also given other values counts), for changes that only offer a mask where one may belong."""
-    held = set()
-    assigned = [(t.id, n.value) for n in walk(fn) if isinstance(n, ast.Assign) for t in n.targets if isinstance(t, ast.Name)]
-    for _ in range(_MASK_ROUNDS):
-        grown = held | {name for name, value in assigned if _boolean_made(value)
-                        or (isinstance(value, ast.Name) and value.id in held)}
-        if grown == held:
-            break
-        held = grown
-    return frozenset(held)
+    also given other values counts), for changes that only offer a mask where one may belong. Read once per def."""
+    known = getattr(fn, "_grader_masks_held", None)
+    if known is None:
+        held = set()
+        assigned = [(t.id, n.value) for n in walk(fn) if isinstance(n, ast.Assign) for t in n.targets
+                    if isinstance(t, ast.Name)]
+        for _ in range(_MASK_ROUNDS):   # (each round linear in the def: a mask followed through a few names)
+            grown = held | {name for name, value in assigned if _boolean_made(value)
+                            or (isinstance(value, ast.Name) and value.id in held)}
+            if grown == held:
+                break
+            held = grown
+        known = fn._grader_masks_held = frozenset(held)
+    return known
 
 
 def _masked_arrays(fn) -> dict:
@@ -7679,6 +7685,9 @@ def _made_from_since(words: _Words, other: str, name: str, line: int) -> bool:
     return other in _made_since(words, name, given[-1], line)
 
 
+_MADE_SINCE_REACH = 64   # assignments after a name's value followed for the values made from it, at most
+
+
 def _made_since(words: _Words, name: str, since: int, line: int) -> frozenset:
     """The locals whose last value before ``line``, given after line ``since``, is made from ``name`` directly or
     through one another (one pass over the def's assignments, read once per def; kept per name and lines)."""
@@ -7690,7 +7699,10 @@ def _made_since(words: _Words, name: str, since: int, line: int) -> frozenset:
     key = (name, since, line)
     if key not in words._made_since:
         made, sources = set(), {name}
-        for at, other, reads in words._assignments_read:   # (in the order they were made: each may read the ones before)
+        first = bisect.bisect_right(words._assignments_read, (since, "\uffff"))
+        # (in the order they were made, each may read the ones before; the few dozen after the name's value only:
+        # every use of a name asks, and a long def is read in linear time)
+        for at, other, reads in words._assignments_read[first:first + _MADE_SINCE_REACH]:
             if at >= line:
                 break
             if at <= since or other == name:
