@@ -1761,8 +1761,11 @@ def ransac_minimal_set(t):
     try:
         H, inliers = ransac_result(t, src, dst, what, seed=0)
     except StudentFailure as failure:
-        if failure.outcome.kind != "exception" or _raises_on_more_exact_pairs(t, H_true):
-            raise   # (then the count is not the cause: what raised is told from the exception)
+        if failure.outcome.kind != "exception" or _raises_on_more_exact_pairs(t, H_true) \
+                or not dlt_works(t, src, dst, H_true):
+            # (then the count is not the cause -- nor where the student's own DLT is wrong on these four pairs:
+            # no sample of a wrong model has an inlier -- what raised is told from the exception)
+            raise
         t.fail(f"{what}: {failure.message.rstrip('.')}. " + measured(
             "Four pairs are the minimal set a homography needs (N >= 4 is valid input), and your function refuses "
             "them: look for a guard that turns them away (`n <= 4` where `n < 4` is meant) or a sample drawn from "
