@@ -681,10 +681,6 @@ def _uint8_arithmetic(name, function, parameters, keeping=frozenset()) -> list[F
     return []
 
 
-def _dotted_name(node) -> str:
-    return node.id if isinstance(node, ast.Name) else ""
-
-
 # ------------------------------------------------------------------ homogeneous coordinates
 def _zeros_call(node) -> bool:
     """``np.zeros`` of a size that depends on the data (one per point), not a constant shape:
