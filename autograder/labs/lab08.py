@@ -1535,7 +1535,7 @@ def _fallback_said(t: Trial, what: str) -> bool:
     fallback = _every_pair_fallback(t)
     if fallback is None:
         return False
-    t.fail(measured(f"{what}: the mask marks every pair, and your H agrees with few of them: your code does that in its "
+    t.fail(measured(f"{what}: the mask marks every pair, and your H sends most of them beyond the threshold: your code does that in its "
                     f"fallback ({fallback}), taken when its loop keeps no model with enough inliers -- the models it "
                     "draws are wrong first (the checks of H say where)."))
     return True
@@ -1929,7 +1929,7 @@ def ransac_mask_of_h(t):
                     "the pairs the returned H sends within the threshold (|H src - dst| < threshold)")
         # Not H's inliers at any threshold, in either direction, nor inverted: measured, the mask is
         # no function of the distances to H, so the two do not come from one model.
-        if inliers.all() and not right_h:   # (a fallback to every pair beside a wrong H: the H is wrong first)
+        if inliers.all() and not right_h and far.mean() > 0.5:   # (every pair marked, H far from most: a fallback)
             _fallback_said(t, what)
         if inliers.all():   # every pair marked: a set within some distance, but not the threshold's
             t.fail(f"{measured}: the mask marks every pair, as if every pair counted as an inlier, although your "
