@@ -2423,6 +2423,26 @@ def test_a_factor_of_an_image_size_is_never_negated_and_a_helper_others_run_righ
     assert not any("`dsize and" in m for m in messages), messages
 
 
+SWAPPED_DEFAULT_SIZE = '''
+def _warp(image, M, dsize=None):
+    height, width = image.shape[:2]
+    return cv2.warpAffine(image, np.asarray(M, dtype=np.float64)[:2], dsize or (height, width))
+'''
+
+
+def test_a_change_in_a_shared_helper_must_not_lower_the_other_callers_scores_even_where_they_fail_too(tmp_path):
+    """The helper's default size is (height, width). `dsize or` -> `dsize and` mends translate's calls (which give
+    no size) by breaking every size a caller gives -- warp_affine's dsize check, graded after translate and
+    passed by the student's own code; every caller fails elsewhere, so the passing-function rule cannot tell."""
+    folder = mutant(tmp_path, "lab07_transformations", SWAPPED_DEFAULT_SIZE)
+    result = grade(str(folder), ["lab07.ex1", "lab07.ex5"])
+    messages = [c.message for c in check_results(result, "lab07.ex1") if c.score < c.max_score]
+    assert messages and not any("`dsize and" in m for m in messages), messages
+    assert any("`(height, width)` to `(width, height)`" in m for m in messages), messages
+    dsize = [c for c in check_results(result, "lab07.ex5") if "dsize=" in c.name]
+    assert dsize and all(c.score == c.max_score for c in dsize)   # (the student's own code is right there)
+
+
 def test_confirmation_images_come_in_every_mix_of_channels():
     # a test of img1's channels where img2's belongs mends BGR + grey and breaks grey + grey: every mix is tried
     from autograder.engine.mutants.naming import other_channels

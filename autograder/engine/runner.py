@@ -721,7 +721,7 @@ def _public_memory_to(fresh: list, public: list) -> None:
     calls seen and the changes told. Copies, one way: what a hidden check adds never reaches a public worker's, and
     the public phase has ended."""
     from .inherited import SHARED_FAILING, SHARED_RIGHT_ITSELF
-    from .mutants.repair import TOLD_BESIDE
+    from .mutants.repair import CHECK_FRACTIONS, TOLD_BESIDE
 
     for sandbox in fresh:
         for done in public:
@@ -734,18 +734,22 @@ def _public_memory_to(fresh: list, public: list) -> None:
                 elif key == "repair seen":
                     for function, calls in value.items():
                         sandbox.shared.setdefault(key, {}).setdefault(function, []).extend(calls)
+                elif key == CHECK_FRACTIONS:   # (the public checks' scores: what a change in a shared helper may not lower)
+                    sandbox.shared.setdefault(key, {}).update(value)
                 elif key in ("repair found", "repair complete", TOLD_BESIDE):   # (the changes told, and whether every
                     for function, told in value.items():   # other was tried: one mistake, one repair, hidden checks too)
                         sandbox.shared.setdefault(key, {}).setdefault(function, list(told) if key == "repair found" else told)
 
 
-def _remember_check(check: Check, trial: Trial) -> None:
-    """Keep the check under the functions it called, for repairs judged by checks run again
-    (:func:`autograder.engine.mutants.repair.remember_check`). Never costs the verdict (logged)."""
+def _remember_check(check: Check, trial: Trial, verdict: Verdict) -> None:
+    """Keep the check under the functions it called, and the share of its points the student's code earned,
+    for repairs judged by checks run again (:func:`autograder.engine.mutants.repair.remember_check`). Never
+    costs the verdict (logged)."""
     from .mutants.repair import remember_check
 
     try:
-        remember_check(trial)
+        fraction = verdict.fraction if isinstance(verdict.fraction, (int, float)) else None
+        remember_check(trial, fraction)
     except Exception as exc:  # noqa: BLE001 - the verdict stands without it
         _log_grader_error(check, exc)
 
@@ -1152,7 +1156,7 @@ def _explained(verdict: Verdict, status: str, check: Check, trial: Trial, readin
     """``verdict`` with its failure named where something names it (the inherited failures', a fresh start's,
     the readings', the error model's, the repairs', the recordings'), and no hint that the student's code
     contradicts. Each naming is a bonus: a failure of one is logged and the verdict stands without it."""
-    _remember_check(check, trial)
+    _remember_check(check, trial, verdict)
     _remember_answers(check, trial)
     # a failure another of the student's functions causes is not this one's mistake, nor one an earlier
     # call's leftovers decided

@@ -3639,6 +3639,7 @@ REPLAYS = 5       # the most changes a failed check is replayed with
 NEARER = 0.98
 SLIGHT_REPLAYS = 4   # the replays of a check kept for those (the check's own others and its pairs' stay theirs)
 PAIR_REPLAYS = 1  # of which kept for pairs of changes
+SHARING_CHECKS = 8  # the checks of the other graded functions running a changed helper replayed with it (worsens_sharing_checks)
 OTHER_CHECKS = 3  # the grading's other checks of a function a change judged by a check must pass too
 PAIR_CHANGES = 6   # the nearest single changes combined in pairs
 SAME_SLIP_PAIRS = 30   # pairs of one change made at two places, tried besides
@@ -3934,8 +3935,14 @@ class _Variants:
         """Whether a check passes run again with every call answered by the variant; ``kept``: the
         check and its properties' examples (:func:`remember_check`). None when it says nothing of
         the function: it never called it, or a property of it has no examples (not run yet)."""
+        fraction = self._replayed_fraction(self.source(mutant), kept, {self.function})
+        return fraction if fraction is None or fraction is False else fraction >= 1.0
+
+    def _replayed_fraction(self, source, kept, functions) -> float | bool | None:
+        """The share of its points a check earns run again with every call answered by ``source`` (a variant's
+        module; False where there is none or no time is left); None when it says nothing of ``functions``: it
+        called none of them, or a property of it has no examples (not run yet)."""
         check, examples = kept
-        source = self.source(mutant)
         if source is None or self.clock.left() <= 0:
             return False
         sandbox = _Replayed(self, source)
@@ -3953,10 +3960,13 @@ class _Variants:
         # (a call of the function that raised is a call too: the check fails by the variant's exception --
         # `not rank != 8` refuses the exact pairs the student's own code fitted)
         raised = getattr(replayed, "raised", None)
-        if not any(call[0] == self.function for call in replayed.calls + replayed.served) \
-                and not (raised and raised[0] == self.function):
+        if not any(call[0] in functions for call in replayed.calls + replayed.served) \
+                and not (raised and raised[0] in functions):
             return None
-        return verdict is None or (isinstance(verdict, Verdict) and verdict.fraction >= 1.0)
+        if verdict is None:
+            return 1.0
+        fraction = verdict.fraction if isinstance(verdict, Verdict) else 0.0
+        return float(fraction) if isinstance(fraction, (int, float)) and fraction == fraction else 0.0
 
     def confirmed(self, mutant, failing) -> bool:
         """Whether the variant is also right on the trial's other calls and on confirmation inputs
@@ -4230,15 +4240,84 @@ class _Variants:
         """Whether the variant fails one of the grading's other checks of the function: a change that
         mends the failing calls by breaking what other calls need is not the slip (names swapped where
         they are made, mending a call that takes them in the wrong order and breaking the cost="ncc"
-        branch that takes them in the right one). Unknown (out of time, not replayable): False."""
-        if mutant.key in self.passed_others:
+        branch that takes them in the right one); or, in a helper other graded functions run too, lowers
+        the score of one of their checks (:meth:`worsens_sharing_checks`). Unknown (out of time, not
+        replayable): False."""
+        if mutant.key not in self.passed_others:
+            for kept in self.other_checks():
+                if self.clock.left() <= 0:
+                    return False
+                if self._replay(mutant, kept) is False and self.clock.left() > 0:
+                    return True
+        return self.worsens_sharing_checks(mutant)
+
+    def worsens_sharing_checks(self, mutant) -> bool:
+        """Whether the variant, a change in a helper that other graded functions run too, scores lower than the
+        student's own code on one of the checks of those functions run so far: `dsize or (h, w)` made `dsize and
+        (h, w)` in a warp helper mends a translation's default size by breaking every size a caller gives, on a
+        check that failed for the default size too (a check they passed already rules it out earlier, see
+        :func:`passing_functions`). Out of time before each of those checks is known: True (not told); a check
+        that cannot be replayed (a property without its examples) says nothing."""
+        sharing = self.student.sharing(mutant.where, self.function)
+        if not sharing:
             return False
-        for kept in self.other_checks():
-            if self.clock.left() <= 0:
-                return False
-            if self._replay(mutant, kept) is False and self.clock.left() > 0:
+        source = self.source(mutant)
+        for kept, own in self._sharing_checks(sorted(sharing, key=lambda other: (-self._gives_changed(mutant, other), other))):
+            if own is None:   # (not run yet in this grading: the student's own code's score is measured here)
+                own = self._replayed_fraction(self.student.text, kept, sharing)
+            fraction = self._replayed_fraction(source, kept, sharing) if isinstance(own, float) else None
+            if own is False or fraction is False or self.clock.left() <= 0:
+                return True   # (not known in the time: a change that may break the other callers is not told)
+            if isinstance(fraction, float) and fraction < own - 1e-9:
                 return True
         return False
+
+    def _gives_changed(self, mutant, function: str) -> int:
+        """How ``function`` calls the helper the change is in, as evidence against the change: 2 where it passes one
+        of its own parameters on as a parameter the changed line reads (`warp_affine(image, M, dsize)` calling a
+        `_warp` whose `dsize or (h, w)` is changed: its callers choose that value), 1 where it gives the helper such a
+        parameter, 0 otherwise."""
+        fix = self.fix(mutant)
+        helper, caller = self.student._defs.get(mutant.where), self.student._defs.get(function)
+        if fix is None or helper is None or caller is None:
+            return 0
+        line, changed = fix.changes[0][:2]
+        try:   # (the names of the code changed -- `dsize or (height, width)` --, else of its whole line)
+            read = {node.id for node in walk(ast.parse(changed.strip(), mode="eval")) if isinstance(node, ast.Name)}
+        except (SyntaxError, ValueError, RecursionError, AttributeError):
+            read = {node.id for node in walk(helper) if isinstance(node, ast.Name) and getattr(node, "lineno", 0) == line}
+        arguments = helper.args
+        positional = [a.arg for a in arguments.posonlyargs + arguments.args]
+        read &= set(positional) | {a.arg for a in arguments.kwonlyargs}
+        own = {a.arg for a in caller.args.posonlyargs + caller.args.args + caller.args.kwonlyargs}
+        best = 0
+        for node in walk(caller):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == mutant.where:
+                given = [(keyword.arg, keyword.value) for keyword in node.keywords] + list(zip(positional, node.args))
+                for parameter, value in given:
+                    if parameter in read:
+                        best = max(best, 2 if isinstance(value, ast.Name) and value.id in own else 1)
+        return best
+
+    def _sharing_checks(self, sharing: list) -> list:
+        """[((check, its properties' examples), the student's score there or None)]: at most :data:`SHARING_CHECKS`
+        checks of the graded functions ``sharing``, in that order -- for each, those run so far where the student's
+        code earned points (a change can lower no other score), then the lab's checks naming it not run yet (as
+        public or hidden as this one; the exercise order is the lab's, so a helper's other callers are often
+        graded later)."""
+        from ..stubs import functions_called
+
+        shared = self.trial.sandbox.shared
+        scored, done = shared.get(CHECK_FRACTIONS, {}), shared.get("checks run", set())
+        later = [check for exercise in self.trial.check.exercise.lab.exercises.values() for check in exercise.checks
+                 if check.id not in done and not check.advice and check.hidden == self.trial.check.hidden]
+        kept = {}
+        for function in sharing:
+            ran = [((check, examples), scored[check.id]) for check, examples in shared.get(("checks calling", function), [])
+                   if check is not self.trial.check and scored.get(check.id, 0) > 0]
+            for entry in ran + [((check, []), None) for check in later if function in functions_called(check)]:
+                kept.setdefault(entry[0][0].id, entry)
+        return list(kept.values())[:SHARING_CHECKS]
 
     def nearest(self, fixes) -> list:
         """Of several confirmed fixes [(mutant, fix)], those whose answers on the confirmation inputs
@@ -4430,14 +4509,18 @@ class _Variants:
         return right(value, reference, student, confirming, projective=self.projective)
 
 
-def remember_check(trial) -> None:
+def remember_check(trial, fraction: float | None = None) -> None:
     """Keep the check of a trial that ran (passed or not), with its properties' examples, under each
     student function it called: a change judged by running a failed check again must pass these too
-    (:meth:`_Variants.passes_other_checks`)."""
+    (:meth:`_Variants.passes_other_checks`); and the share of its points the student's own code earned
+    (``fraction``): a change in a helper other graded functions run must not lower theirs
+    (:meth:`_Variants.worsens_sharing_checks`)."""
     shared = getattr(trial.sandbox, "shared", None)
     if shared is None:
         return
     shared.setdefault("checks run", set()).add(trial.check.id)
+    if fraction is not None:
+        shared.setdefault(CHECK_FRACTIONS, {})[trial.check.id] = fraction
     if not _replayable(trial):
         return
     for function in dict.fromkeys(call[0] for call in trial.calls):
@@ -4618,6 +4701,7 @@ def _downstream_dropped(repair: Repair, code) -> Repair:
     return replace(repair, fixes=tuple(kept)) if kept and len(kept) < len(repair.fixes) else repair
 
 
+CHECK_FRACTIONS = "check fractions"   # the grading's {check id: the share of its points the student's code earned}
 TOLD_BESIDE = "repair told beside"   # the grading's {(function, a check's own mistake): (that check, one complete change)}
 
 
