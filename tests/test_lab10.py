@@ -299,3 +299,17 @@ def test_a_dolly_that_moves_the_wrong_points_is_not_told_of_nan_behind_the_camer
     checks = check_results(result, "lab10.ext2")
     assert any(c.score < c.max_score for c in checks)
     assert not [c for c in checks if c.status == "advice" and "behind the camera" in c.message]
+
+
+def test_corners_in_the_layout_cv2_project_points_returns_lose_a_quarter_named_and_a_right_pose_keeps_the_rest(tmp_path):
+    """The API asks `reprojected` as (M, 2); cv2.projectPoints gives (M, 1, 2). A right pose with right corners in
+    that layout keeps three quarters of each pose check, told the layout; the board-less case ((0, 2)) is unchanged."""
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, MODULE, ("return rvec.ravel(), tvec.ravel(), reprojected.reshape(-1, 2)",
+                                                 "return rvec.ravel(), tvec.ravel(), reprojected"))
+    results = check_results(grade(str(folder), ["lab10.ex6"]), "lab10.ex6")
+    posed = [c for c in results if c.score < c.max_score]
+    assert posed and all(c.score == pytest.approx(0.75 * c.max_score) for c in posed), [(c.name, c.score) for c in posed]
+    assert all("(N, 1, 2) point layout" in c.message and "reshape it to (N, 2)" in c.message for c in posed)
+    assert any("without a board" in c.name and c.passed for c in results)

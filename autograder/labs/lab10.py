@@ -27,7 +27,7 @@ from ..engine.claims import (calls_any, checklist, divides_by, evidenced, from_c
                              passes_argument, reshapes, takes_last_column_of_vt, takes_last_row_of_vt, where_to_look)
 from ..engine.compare import (at_precision, blurred_difference, closest, fill_fraction, format_apart, format_arrays_apart,
                        magnitude, projective_distance)
-from ..engine.forms import scale_form
+from ..engine.forms import scale_form, shape_form
 from ..engine.hints import Hint, Predicate, _path, calls, code_of, expr, functions_read, mentions
 from ..engine.judges import (BLACK_FILL_HINT, FILL_TOLERANCE, Probe, call_probe, fingerprint, format_matrix,
                              name_mistake, parameter_ignored,
@@ -1106,8 +1106,15 @@ DIST_TO_PNP_HINT = Hint(
     instead="your code {found}, but not the dist given (None or zeros?).")
 
 
+LAYOUT_SHARE = 0.75   # of a pose check's points, for a right pose and right corners in cv2.projectPoints's (M, 1, 2)
+
+
 def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, dist=None, show=True):
     """Judge (rvec, tvec, reprojected) against the true pose, up to the board's symmetry."""
+    # (the corners as cv2.projectPoints returns them, (M, 1, 2), are judged as points; what the API asks, (M, 2), is
+    # told where everything else is right)
+    layout = isinstance(got, (tuple, list)) and len(got) == 3 and isinstance(got[2], np.ndarray) \
+        and got[2].shape == (len(corners), 1, 2) and len(corners) > 0
     rvec, tvec, reprojected = _unpack_pose(t, what, got, len(corners))
     if show:
         t.images(f"{what}: true corners (green rings) and your reprojection (red dots)",
@@ -1152,6 +1159,11 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                                          f"your own rvec and tvec (at most {CONSISTENCY_TOLERANCE} px expected)")
                            + _detected_returned(image, pattern, reprojected),
                            mistake=DETECTED_RETURNED if _detected_returned(image, pattern, reprojected) else "")
+        if layout:
+            form = shape_form((len(corners), 1, 2), (len(corners), 2))
+            return partial(LAYOUT_SHARE, f"{what}: the pose and the reprojected corners are right, but the corners are returned "
+                                f"as an array of shape {(len(corners), 1, 2)} where ({len(corners)}, 2) is asked: "
+                                f"{form.sentence} (cv2.projectPoints gives that layout)", mistake=form.mistake)
         return passed(f"rotation within {angle:.2f} deg, translation within {rel:.2%}, "
                       f"reprojection within {reproj_error:.2f} px")
     # diagnosis
