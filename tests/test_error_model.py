@@ -628,3 +628,33 @@ def test_every_mutant_is_read_against_the_students_code_whatever_its_payload():
             written = ast.parse(apply_edits(model.source, mutant.edits))   # the mutant's own code writes it
             fn = next(n for n in written.body if isinstance(n, ast.FunctionDef) and n.name == mutant.where)
             assert naming._written_alike(mutant, trial, [fn]) is True, mutant.sentence
+
+
+COLUMNS_SCALED = '''
+def triangulate(P1, P2, pts1, pts2):
+    P1, P2 = np.asarray(P1, dtype=float), np.asarray(P2, dtype=float)
+    pts1 = np.asarray(pts1, dtype=float)
+    single = pts1.ndim == 1
+    pts1, pts2 = pts1.reshape(-1, 2), np.asarray(pts2, dtype=float).reshape(-1, 2)
+    result = np.zeros((len(pts1), 3))
+    for i in range(len(pts1)):
+        x, y = pts1[i]
+        xp, yp = pts2[i]
+        A = np.vstack([x * P1[2] - P1[0], y * P1[2] - P1[1], xp * P2[2] - P2[0], yp * P2[2] - P2[1]])
+        A = A / np.linalg.norm(A, axis=0)
+        X = np.linalg.svd(A)[2][-1]
+        result[i] = X[:3] / X[3]
+    return result[0] if single else result
+'''
+
+
+def test_an_axis_the_error_model_names_is_said_only_of_code_that_passes_that_axis(tmp_path):
+    """The reference balances the rows of its (N, 4, 4) systems with `norm(A, axis=2, keepdims=True)`; its mutant
+    `axis=1` reproduces a per-point loop that divides each 4 x 4 A by `norm(A, axis=0)` (its columns' norms).
+    "runs over axis 1 where axis 2 belongs" is false of that code: a keyword's value is judged with its call."""
+    from autograder.engine.runner import grade
+    from conftest import check_results, mutant
+
+    result = grade(str(mutant(tmp_path, "lab12_stereo", COLUMNS_SCALED)), ["lab12.ex1"])
+    failed = [c for c in check_results(result, "lab12.ex1") if c.score < c.max_score]
+    assert failed and not any("axis 1 where axis 2" in c.message for c in failed), [c.message for c in failed]

@@ -1524,10 +1524,12 @@ def _mutated_expression(source: str, edit) -> tuple | None:
     # by the arithmetic it goes into) and in the reference at the same place.
     parents_after = _parents(changed_def)
     while not isinstance(changed, _CARRIERS):
-        parent = parents_after[id(changed)][0]
+        parent, carrier_parent = parents_after[id(changed)][0], parents[id(carrier)][0]
+        if isinstance(parent, ast.keyword):   # (a keyword's value is judged with its call: `axis=1` of a norm)
+            parent, carrier_parent = parents_after[id(parent)][0], parents[id(carrier_parent)][0]
         if not isinstance(parent, ast.expr):
             return None
-        changed, carrier = parent, parents[id(carrier)][0]
+        changed, carrier = parent, carrier_parent
     ours = frozenset(node.id for node in walk(fn) if isinstance(node, ast.Name))
     if not (isinstance(carrier, ast.Call) and isinstance(changed, ast.Call)):
         return changed, None, 0, frozenset(), ours
