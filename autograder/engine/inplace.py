@@ -245,3 +245,79 @@ AUGMENTS = Predicate("writes an augmented assignment (x /= s)",
 HINT = (measured("work on a copy: x = np.array(x, dtype=float) copies (np.asarray and .astype(float) of a float "
                  "array do not)")
         + guard(", and write x = x / s rather than x /= s", ~AUGMENTS, instead=""))
+
+
+# ---------------------------------------------------------------- where the code writes into its input
+# What the code holds of an argument without copying it: the name itself, np.asarray of it (a float array given is
+# returned as it is), a reshape, a view, a plain slice, its transpose.
+_VIEWS = frozenset({"asarray", "asanyarray", "reshape", "view", "ravel", "squeeze", "atleast_1d", "atleast_2d"})
+_VERB_OPS = {"divides": (ast.Div, ast.FloorDiv, ast.Mult), "multiplies": (ast.Mult, ast.Div),
+             "shifts": (ast.Add, ast.Sub)}
+
+
+def _held(value, aliases: set) -> str | None:
+    """The name of ``aliases`` that ``value`` holds without a copy (`x`, `x[:]`, `x.T`, `x.reshape(-1, 2)`,
+    `np.asarray(x, dtype=float)`), or None."""
+    if isinstance(value, ast.Name):
+        return value.id if value.id in aliases else None
+    if isinstance(value, ast.Subscript) and isinstance(value.slice, ast.Slice):
+        return _held(value.value, aliases)
+    if isinstance(value, ast.Attribute) and value.attr == "T":
+        return _held(value.value, aliases)
+    if not isinstance(value, ast.Call) or not isinstance(value.func, ast.Attribute) \
+            or any(k.arg == "copy" for k in value.keywords):
+        return None
+    function, name = value.func, value.func.attr
+    if isinstance(function.value, ast.Name) and function.value.id in ("np", "numpy"):
+        return _held(value.args[0], aliases) if name in _VIEWS and value.args else None
+    return _held(function.value, aliases) if name in _VIEWS else None
+
+
+def writes_into_arguments(functions, verb: str = "") -> list[tuple]:
+    """[(def, statement, the alias written, the statement that made the alias or None)]: each statement of
+    ``functions`` (the student's defs) that writes into an array one of its parameters was given -- an augmented
+    assignment (`centred -= c`) or an item assignment (`pts[:, 0] = ...`) on the parameter or on a name holding it
+    without a copy (`centred = points`, `x = np.asarray(x)`). ``verb``, :func:`how_changed`'s, keeps the
+    arithmetic that changes an array so ("divides": `/=`, `*=`; "shifts": `+=`, `-=`). Read in the order of the
+    lines, names rebound to anything else dropped; linear in the defs' length."""
+    allowed = next((ops for word, ops in _VERB_OPS.items() if verb.startswith(word)), None)
+    found = []
+    for fn in functions:
+        parameters = {a.arg for a in fn.args.posonlyargs + fn.args.args + fn.args.kwonlyargs}
+        aliases = {name: None for name in parameters}
+        statements = sorted((node for node in walk(fn) if isinstance(node, (ast.Assign, ast.AugAssign))),
+                            key=lambda node: (node.lineno, node.col_offset))
+        for node in statements:
+            if isinstance(node, ast.AugAssign):
+                target = node.target.value if isinstance(node.target, ast.Subscript) else node.target
+                if isinstance(target, ast.Name) and target.id in aliases \
+                        and (allowed is None or isinstance(node.op, allowed)):
+                    found.append((fn, node, target.id, aliases[target.id]))
+                continue
+            for target in node.targets:
+                if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name) \
+                        and target.value.id in aliases and allowed is None:
+                    found.append((fn, node, target.value.id, aliases[target.value.id]))
+                elif isinstance(target, ast.Name):
+                    held = _held(node.value, set(aliases))
+                    if held is not None:
+                        aliases[target.id] = node if held in parameters or aliases.get(held) is None else aliases[held]
+                    else:
+                        aliases.pop(target.id, None)
+    return found
+
+
+def place_of_change(functions, verb: str = "") -> str:
+    """The sentence saying where the student's code writes into its caller's array, when one statement of
+    ``functions`` does (:func:`writes_into_arguments`); "" when none or several do (the place is then not
+    certain)."""
+    found = writes_into_arguments(functions, verb)
+    if len(found) != 1:
+        return ""
+    fn, statement, alias, made = found[0]
+    text = ast.unparse(statement)
+    where = f"line {statement.lineno}, in `{fn.name}`"
+    if made is None:
+        return f"Your code writes into it at {where}: `{text}` changes the array given."
+    return (f"Your code writes into it at {where}: `{text}` changes the array given, which `{ast.unparse(made)}` "
+            f"(line {made.lineno}) does not copy.")

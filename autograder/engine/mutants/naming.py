@@ -1377,8 +1377,12 @@ def named_by_error_model(verdict, trial, raised: bool = False):
     called = {call[0] for call in trial.calls} | set(functions_called(trial.check)) if hasattr(trial, "check") \
         else {call[0] for call in trial.calls}
     hand_named = trial.sandbox.shared.setdefault("error model: named by hand", set())
-    if verdict.mistake == IN_PLACE:   # the engine names the change; the model may say where it is made
+    if verdict.mistake == IN_PLACE:   # the engine names the change; the code read, or the model, says where it is made
         hand_named.update(called)
+        place = _place_of_change(verdict, trial, called)
+        if place:
+            first, newline, rest = str(verdict.message).partition("\n")
+            return replace(verdict, message=f"{first} {place}{newline}{rest}")
         naming = name_in_place(trial)
         return verdict if naming is None else replace(verdict, message=_appended(str(verdict.message), naming))
     if verdict.mistake or "looks like" in str(verdict.message).lower():
@@ -1393,6 +1397,21 @@ def named_by_error_model(verdict, trial, raised: bool = False):
     if naming is None or not _code_can(naming, trial, called) or _vouched_for(naming, trial):
         return verdict
     return replace(verdict, message=_appended(str(verdict.message), naming), mistake=naming.mistake)
+
+
+def _place_of_change(verdict, trial, called) -> str:
+    """Where the student's code that ``called`` functions run writes into its caller's array, read from it
+    (:func:`..inplace.place_of_change`: one statement, of the arithmetic the change measured shows); ""."""
+    from ..hints import code_of
+    from ..inplace import place_of_change
+
+    code = code_of(trial)
+    if not code.functions:
+        return ""
+    verb = re.search(r"\(\) (\w+)", str(verdict.message))
+    # (the functions the changing call ran: the last call's, where the check named the change)
+    function = trial.calls[-1][0] if getattr(trial, "calls", None) else None
+    return place_of_change(code.reachable([function] if function else sorted(called)), verb.group(1) if verb else "")
 
 
 # An operation a mutant's words say the code does, and what the code must hold to do it: a name saying the
