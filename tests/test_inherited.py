@@ -418,3 +418,17 @@ def test_a_function_right_itself_is_no_evidence_against_the_helpers_it_shares(tm
     assert any(c.message.startswith(f"Your `rotate` {ITSELF_RIGHT}") for c in rotating), [c.message for c in rotating]
     assert any(not c.message.startswith(f"Your `rotate` {ITSELF_RIGHT}") for c in rotating if c.name.startswith("rotate"))
     assert warping and not any("which your `rotate` uses too" in c.message for c in warping), [c.message for c in warping]
+
+
+def test_a_check_judging_a_function_and_the_graded_function_it_calls_says_when_that_one_fails_its_own(tmp_path):
+    """The RANSAC check over five seeds judges homography_ransac and the student's own homography_dlt (which it
+    calls); with a wrong row in the DLT helper, its recipe hint ("look at how many samples ...") sent the student
+    into a RANSAC that is right (07d lab08/02). It now says homography_dlt fails its own checks, as the others do."""
+    from autograder.engine.runner import grade
+    from conftest import check_results, edited_reference
+
+    folder = edited_reference(tmp_path, "lab08_homographies", ("-v * x, -v * y, -v]", "-v * x, -v * y, -u]"))
+    result = grade(str(folder), ["lab08.ex2", "lab08.ex4"])
+    seeds = [c for c in check_results(result, "lab08.ex4") if "5 seeds" in c.name]
+    assert seeds and seeds[0].score < seeds[0].max_score
+    assert "Your `homography_ransac` calls your `homography_dlt`, which fails its own checks" in seeds[0].message

@@ -445,11 +445,20 @@ def told(verdict, trial):
     sentence added; and whether it was inherited (the runner then names no mistake of the
     function). Records, for later checks, a function failing its own checks."""
     called = exercised(trial)
-    if len(called) != 1:
-        return verdict, False
-    [function] = called
     code = code_of(trial)
     failing = _failing(trial)
+    if len(called) != 1:
+        # (a check judging a function and one it calls -- RANSAC and the DLT it fits with -- is judged of the caller:
+        # where the callee fails its own checks, that is said (the static fallback), not decided by the dynamic test)
+        api = _api(trial.lab)
+        callers = [f for f in sorted(called) if code.functions and called - {f} <= api_callees(code, f, api)]
+        depends = sorted(api_callees(code, callers[0], api) & failing) if len(callers) == 1 else []
+        if depends:
+            failing.add(callers[0])
+            verdict = replace(verdict, message=f"{str(verdict.message).rstrip()}\n"
+                                               f"{dependency_sentence(callers[0], depends)}")
+        return verdict, False
+    [function] = called
     callees = api_callees(code, function, _api(trial.lab)) if code.functions else frozenset()
     reference = reference_of(trial.lab)
     substitutes = callees & api_callees(reference[1], function, _api(trial.lab)) if reference else frozenset()
