@@ -199,3 +199,15 @@ def test_an_svd_per_pair_in_a_loop_is_no_batched_svd():
         """))
     assert code_signs._svd_in_a_loop(per_pair.reachable(["triangulate"]))
     assert not code_signs._svd_in_a_loop(batched.reachable(["triangulate"]))
+
+
+def test_lines_drawn_black_on_a_grey_image_kept_grey_are_not_told_to_keep_it_grey(tmp_path):
+    """A palette colour on a grey image draws its first value (07d lab11/03): told, with a grey level to draw; the
+    image the code already keeps grey is not asked to be kept grey (a hint the code contradicts)."""
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, "lab11_two_view", ("if canvas.ndim == 3 else 255", ""))
+    messages = [c.message + c.hint for c in check_results(grade(str(folder), ["lab11.ex2"]), "lab11.ex2")
+                if c.score < c.max_score]
+    black = [m for m in messages if "draws them in black" in m or "draws it in black" in m]
+    assert black and not any("keep the image grey" in m for m in black), messages

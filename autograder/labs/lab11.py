@@ -702,6 +702,7 @@ def name_dark_on_grey(t: Trial, what: str, image, lines, missed):
     if not (isinstance(got, np.ndarray) and got.dtype == np.uint8 and got.shape[:2] == image.shape[:2]
             and got.ndim in (2, 3)):
         return
+    kept_grey = got.ndim == 2
     got = got if got.ndim == 3 else got[..., None]
     height, width = image.shape[:2]
     # (within a pixel of the line: its samples and the pixels a 1-px line lights differ by rounding)
@@ -724,8 +725,9 @@ def name_dark_on_grey(t: Trial, what: str, image, lines, missed):
            f"your code draws {'it' if len(dark) == 1 else 'them'} in black"
            + (from_code(": on a one-channel image OpenCV draws only the first value of a colour (B of (B, G, R)), so "
                         "a red (0, 0, 255) draws 0") if opencv else "")
-           + ". " + measured("On a grey image draw a bright grey level (255), and keep the image grey (grey in, grey "
-                             "out)."))   # (an effect, measured: no name of the slip, so the repairs look for it)
+           + ". " + measured("On a grey image draw a bright grey level (255)"
+                             + ("." if kept_grey else ", and keep the image grey (grey in, grey out).")))
+    # (an effect, measured: no name of the slip, so the repairs look for it; the image kept grey is not asked for)
 
 
 SIDES_ONLY = "each line's y is computed from its x only, never its x from y: steep lines are missed"
