@@ -213,3 +213,17 @@ def test_a_library_fit_of_another_family_is_told_only_where_it_is_what_affine_ls
                 warnings.warn("not affine")
             return A
         """)
+
+
+def test_a_solution_read_back_row_by_row_is_told_without_the_six_wide_rows_the_code_never_writes(tmp_path):
+    """A (3, 2) solution of [x, y, 1] rows reshaped (2, 3) gives the same A as six-wide rows paired with the unknowns
+    in another order; the code writes no six-wide rows, so that cause is not said (07d lab07/06), the label kept."""
+    from conftest import edited_reference
+    from fixtures.lab07 import TRANSPOSED_READ_BY_ROWS
+
+    folder = edited_reference(tmp_path, "lab07_transformations",
+                              ("return np.linalg.solve(S, dst).T", "return np.linalg.solve(S, dst).reshape(2, 3)"))
+    failed = [c for c in check_results(grade(str(folder), ["lab07.ex5"]), "lab07.ex5") if c.score < c.max_score]
+    assert failed and all(c.mistake == TRANSPOSED_READ_BY_ROWS for c in failed), [c.mistake for c in failed]
+    assert all("reshaped where it is transposed" in c.message and "[x, y, 1, 0, 0, 0]" not in c.message
+               for c in failed), [c.message for c in failed]

@@ -287,9 +287,12 @@ def rewritten(verdict, t):
     the opposite of) is dropped: instructors read labels in the overview and the review app too."""
     message, hint = said(t, str(verdict.message)), said(t, str(verdict.hint))
     mistake = verdict.mistake
-    # (kept where what replaces it still says it first: a cause the code shows, added to the name)
-    if isinstance(mistake, str) and mistake and not said(t, mistake).startswith(mistake):
-        mistake = ""
+    # (kept where what replaces it still says it first: a cause the code shows, added to the name; or says its first
+    # part, one of the causes it lists left out as not the code's)
+    if isinstance(mistake, str) and mistake:
+        told = said(t, mistake)
+        if not (told.startswith(mistake) or (len(told) >= 40 and mistake.startswith(told))):
+            mistake = ""
     if message == verdict.message and hint == verdict.hint and mistake == verdict.mistake:
         return verdict
     return replace(verdict, message=message, hint=hint, mistake=mistake)

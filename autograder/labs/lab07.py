@@ -58,8 +58,20 @@ def _sets_ones(function) -> bool:
 
 ONES_COLUMN = (calls_any("np.ones", "np.ones_like", "cv2.convertPointsToHomogeneous")
                | Predicate("sets entries of the system to 1", _sets_ones)).saying("builds the column of ones")
-# (what A came out as, measured; the two causes it names are the two ways code makes it)
+# (what A came out as, measured; the two causes it names are the two ways code makes it -- the second, rows of six
+# entries paired with the unknowns in another order, only of code that writes such rows: a (3, 2) solution of
+# [x, y, 1] rows read back row by row is the first alone)
 measured(truth.TRANSPOSED_READ_BY_ROWS)
+
+
+def _six_wide_rows(function) -> bool:
+    return any(isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 6
+               and sum(isinstance(e, ast.Constant) and e.value == 0 for e in node.elts) >= 3 for node in walk(function))
+
+
+SIX_WIDE_ROWS = Predicate("writes rows of six entries ([x, y, 1, 0, 0, 0])", _six_wide_rows)
+guard(truth.TRANSPOSED_READ_BY_ROWS, asks=~SIX_WIDE_ROWS,
+      instead=truth.TRANSPOSED_READ_BY_ROWS.split(", or the rows", 1)[0])
 guard(truth.NO_ONES_COLUMN, asks=ONES_COLUMN,
       instead="the fit has no translation (its last column is 0), yet your code {found}: look at how the system "
               "is solved and how its solution is read back into the matrix")
