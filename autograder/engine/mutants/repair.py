@@ -1757,6 +1757,11 @@ class _Student:
                     or (_width(parent) > _SHOWN and not isinstance(context, ast.Constant)):
                 break   # (a number alone says nothing: its call is shown, long arguments as `...`)
             context = parent
+        # (a subscript's tuple of slices is shown with what it indexes: `np.mgrid[0:rows, 0:cols]`, not `(0:rows, 0:cols)`)
+        holder = parents.get(id(context), (None, None))
+        if isinstance(context, ast.Tuple) and isinstance(holder[0], ast.Subscript) and holder[1] == "slice" \
+                and _width(holder[0]) <= _SHOWN:
+            context = holder[0]
         # (the same code twice in the statement -- `[r * np.cos(a), r * np.cos(a)]` -- is shown with
         # enough around it to say which one)
         statement = context
@@ -1779,6 +1784,11 @@ class _Student:
             _replace(_parents(copied), target, made)
         after = ast.unparse(ast.fix_missing_locations(copied))
         before, after = (" ".join(text.split()) for text in (before, after))
+        # (a tuple written without brackets -- `height, width = dsize` -- is shown without them, as it is written)
+        if isinstance(context, ast.Tuple) and before[:1] == after[:1] == "(" and before[-1:] == after[-1:] == ")":
+            segment = ast.get_source_segment(self.text, context)
+            if segment is not None and not segment.lstrip().startswith("("):
+                before, after = before[1:-1], after[1:-1]
         # (a minus put on a term is shown as the student would write it: `z0 + -c` is `z0 - c`)
         after = re.sub(r" - -(?=[\w(])", " + ", re.sub(r" \+ -(?=[\w(])", " - ", after))
         if before == after:
