@@ -5979,3 +5979,23 @@ def test_a_raw_input_read_where_a_value_made_from_it_belongs_is_offered_the_last
     offered = [after for before, after in _shown_changes(source, "other_name") if before == "w = pts[:, 2]"]
     assert offered[0] == "w = x[:, 2]", offered
     assert "w = Xh[:, 2]" not in offered[:1]
+
+
+INVERSE_FLAGGED_SHEAR = '''
+def shear(image, s=0.5):
+    h, w = image.shape[:2]
+    M = np.float32([[1, s, 0],
+                    [0, 1, 0]])
+    return cv2.warpAffine(image, M, (w, h), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP,
+                          borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+'''
+
+
+def test_a_flag_the_reference_never_passes_is_told_taken_out_not_the_sign_that_compensates_for_it(tmp_path):
+    """WARP_INVERSE_MAP with a shear's forward matrix: `s` -> `-s` mends exactly too (the inverse of a shear is the
+    opposite shear), upstream of the flag; the flag no reference function passes is the slip (07e lab07/05)."""
+    result = grade(str(mutant(tmp_path, "lab07_transformations", INVERSE_FLAGGED_SHEAR)), ["lab07.ex4"], pictures="none")
+    failed = [c for c in check_results(result, "lab07.ex4") if c.score < c.max_score]
+    assert failed and any("`cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP` to `cv2.INTER_LINEAR`" in c.message for c in failed), \
+        [c.message for c in failed]
+    assert not any("`[1, -s, 0]`" in c.message for c in failed), [c.message for c in failed]

@@ -4614,12 +4614,38 @@ def _beside(verdict) -> bool:
     message = str(verdict.message)
     if verdict.mistake in READ_IN_CODE:   # (a name said after reading the code points into it already)
         return False
+    if _said_from_code(message):   # (as does a guarded name's other wording, said of what the code was read to do)
+        return False
     if verdict.mistake in GUESSED:   # (a cause guessed from measures: a confirmed change takes its place)
         return True
     # (nor beside a caller's array changed in place, measured where the effect shows: the write is the slip,
     # and a change elsewhere that mends the second call's answers -- a rounding made a floor -- compensates)
     return BESIDE_NAMES and not verdict.mistake.startswith(MISTAKE) and verdict.mistake != CHANGED_IN_PLACE \
         and "reading your code" not in message.lower() and re.search(r"\(line \d+\)", message) is None
+
+
+def _said_from_code(message: str) -> bool:
+    """Whether ``message`` holds a guarded diagnosis in the wording said where the code was read to do what it
+    asks (a :func:`..claims.guard`'s ``instead`` naming what the code does, "your code {found}": "the shear goes the
+    opposite way: your code passes cv2.WARP_INVERSE_MAP ..."): a change beside it -- the matrix's sign, which
+    compensates for the flag -- would point elsewhere than the step read."""
+    from ..claims import GUARDED
+
+    for hint in GUARDED.values():
+        instead = getattr(hint, "instead", None) or ""
+        lead = instead.split("{found}", 1)[0]
+        if "{found}" in instead and "your code" in lead and len(lead) >= 20 and lead in message:
+            return True
+    return False
+
+
+def _flag_never_passed(fix: Fix, reference_source: str) -> bool:
+    """Whether ``fix`` takes out an OpenCV flag (`| cv2.WARP_INVERSE_MAP`) that the reference module never names."""
+    if fix.operator != "drop_flag":
+        return False
+    taken = {flag for _, before, after in fix.changes
+             for flag in set(re.findall(r"\bcv2?\.([A-Z][A-Z0-9_]+)", before)) - set(re.findall(r"\bcv2?\.([A-Z][A-Z0-9_]+)", after))}
+    return bool(taken) and not any(re.search(rf"\b{flag}\b", reference_source) for flag in taken)
 
 
 def _upstream(repair: Repair, trial) -> Repair:
@@ -4633,6 +4659,11 @@ def _upstream(repair: Repair, trial) -> Repair:
     # place mends alike: changed, it compensates for the slip further on (`g >> n_bits - i`), however
     # the values flow from one to the other.
     model = naming.model_for(trial.lab)
+    # An OpenCV flag the reference never passes, taken out, is the slip: a change elsewhere that mends alike
+    # compensates for it (a shear's sign turned beside cv2.WARP_INVERSE_MAP), wherever the values flow.
+    extra = tuple(fix for fix in repair.fixes if model is not None and _flag_never_passed(fix, model.source))
+    if extra and len(extra) < len(repair.fixes):
+        return replace(repair, fixes=extra)
     own = tuple(fix for fix in repair.fixes if model is None or not _departs(fix, model.source))
     if own and len(own) < len(repair.fixes):
         repair = replace(repair, fixes=own)
