@@ -78,6 +78,18 @@ def test_a_refit_is_read_from_points_a_mask_picks_not_from_how_many_fits_there_a
                 H = homography_dlt(src[idx], dst[idx])
             return H
         """) == ""   # (a loop over drawn samples: each is a draw)
+    # (a mask kept as the best so far and refined after the loop is no draw, though measured from one: 07e lab08/06)
+    assert found(refits, """
+        def f(src, dst, rng, threshold):
+            best_inliers = None
+            for _ in range(100):
+                sample = rng.choice(len(src), 4, replace=False)
+                H = homography_dlt(src[sample], dst[sample])
+                inliers = errors(H, src, dst) < threshold
+                best_inliers = inliers
+            mask = best_inliers
+            return homography_dlt(src[mask], dst[mask])
+        """) == "fits homography_dlt again on the points a mask picks"
 
 
 def test_products_expressions_keywords_and_attributes():

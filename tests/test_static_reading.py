@@ -2100,3 +2100,27 @@ def test_a_fundamental_matrix_given_to_recover_pose_beside_the_essential_one_mad
     [finding] = [f for f in read_source(textwrap.dedent(without), {"two_view_reconstruction"}).findings[
         "two_view_reconstruction"] if f.mistake == "a fundamental matrix given where the essential matrix belongs"]
     assert "make E = K2^T F K1 first" in finding.sentence
+
+
+def test_the_last_turns_value_read_after_a_loop_is_told_to_read_the_name_the_best_was_refined_into():
+    """The best mask kept in `best_inliers`, taken on after the loop as `mask` and refined by refits, and the loop's
+    last `inliers` returned (07e lab08/06): "use `best_inliers`" would return the unrefined mask beside a refit H."""
+    source = textwrap.dedent("""
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            best_count, best_inliers = 0, None
+            for _ in range(200):
+                H = fit(src, dst)
+                inliers = errors(H, src, dst) < threshold
+                if inliers.sum() > best_count:
+                    best_count = inliers.sum()
+                    best_inliers = inliers
+            mask = best_inliers
+            H = fit(src[mask], dst[mask])
+            for _ in range(5):
+                mask = errors(H, src, dst) < threshold
+                H = fit(src[mask], dst[mask])
+            return H, inliers
+        """)
+    reading = read_source(source, frozenset())
+    [finding] = [f for found in reading.findings.values() for f in found]
+    assert "use `mask`, which your code makes from it after the loop, there" in finding.sentence, finding.sentence

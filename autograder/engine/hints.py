@@ -277,6 +277,11 @@ def _drawn_names(function) -> set[str]:
     `for idx in samples` over drawn samples), never a mask a comparison makes."""
     bindings = [(node.targets, node.value) for node in walk(function) if isinstance(node, ast.Assign)] + \
         [([node.target], node.iter) for node in walk(function) if isinstance(node, (ast.For, ast.comprehension))]
+    # (a name a comparison binds is a mask, whatever it was measured from: `inliers = errors < threshold`
+    # with the errors of drawn samples picks the pairs a model keeps, not a random sample -- nor is a copy of it
+    # kept as the best so far, `best_inliers = inliers`, then refined, `mask = best_inliers`)
+    masks = {n.id for targets, value in bindings if isinstance(value, ast.Compare)
+             for t in targets for n in walk(t) if isinstance(n, ast.Name)}
     drawn: set[str] = set()
     grown = True
     while grown:
@@ -287,15 +292,11 @@ def _drawn_names(function) -> set[str]:
                         and (c.func.attr if isinstance(c.func, ast.Attribute) else c.func.id) in RANDOM_DRAWS
                         for c in walk(value))
             if draws or reads & drawn:
-                made = {n.id for t in targets for n in walk(t) if isinstance(n, ast.Name)} - drawn
+                made = {n.id for t in targets for n in walk(t) if isinstance(n, ast.Name)} - drawn - masks
                 if made:
                     drawn |= made
                     grown = True
-    # (a name a comparison binds is a mask, whatever it was measured from: `inliers = errors < threshold`
-    # with the errors of drawn samples picks the pairs a model keeps, not a random sample)
-    masks = {n.id for targets, value in bindings if isinstance(value, ast.Compare)
-             for t in targets for n in walk(t) if isinstance(n, ast.Name)}
-    return drawn - masks
+    return drawn
 
 
 def picked_point_fits(function, name: str) -> list[ast.Call]:

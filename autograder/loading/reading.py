@@ -1317,6 +1317,16 @@ def _kept_copies(loop) -> dict[str, str]:
     return kept
 
 
+def _plain_copies(statement) -> list:
+    """[(target, the name it copies)] of an assignment `a = b` or `a = b.copy()` (one target, names only)."""
+    if not isinstance(statement, ast.Assign) or len(statement.targets) != 1 or not isinstance(statement.targets[0], ast.Name):
+        return []
+    value = statement.value
+    if isinstance(value, ast.Call) and isinstance(value.func, ast.Attribute) and value.func.attr == "copy" and not value.args:
+        value = value.func.value
+    return [(statement.targets[0], value.id)] if isinstance(value, ast.Name) else []
+
+
 def _assigns(statement, name: str) -> bool:
     return any(isinstance(n, ast.Name) and n.id == name and isinstance(n.ctx, ast.Store)
                for n in walk(statement))
@@ -1338,11 +1348,18 @@ def _last_turn_used(name, function) -> list[Finding]:
                 for original, copy in _kept_copies(statement).items():
                     read = following.get(original)
                     if original in stored and read is not None:
+                        # (the best copy taken on after the loop under another name -- `mask = best_inliers`, refined
+                        # by a refit -- is what the read belongs to: that name is told, not the copy)
+                        after = block[block.index(statement) + 1:]
+                        renamed = [target.id for later in after if _line(later) < _line(read)
+                                   for target, value in _plain_copies(later) if value == copy]
+                        use = f"`{renamed[-1]}`, which your code makes from it after the loop," if renamed \
+                            else f"`{copy}`"
                         return [Finding(name, _line(read), "the last turn's value is used after the loop, not the "
                                         "best one kept",
                                         f"{name} (line {_line(read)}) reads `{original}` after the loop: that is the "
                                         f"value of the loop's last turn, while the best one was kept in `{copy}` "
-                                        f"(line {_line(statement)} on); use `{copy}` there", certain=True)]
+                                        f"(line {_line(statement)} on); use {use} there", certain=True)]
             following.update(_first_uses(statement))
     return []
 
