@@ -1161,9 +1161,10 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
                            mistake=DETECTED_RETURNED if _detected_returned(image, pattern, reprojected) else "")
         if layout:
             form = shape_form((len(corners), 1, 2), (len(corners), 2))
-            return partial(LAYOUT_SHARE, f"{what}: the pose and the reprojected corners are right, but the corners are returned "
-                                f"as an array of shape {(len(corners), 1, 2)} where ({len(corners)}, 2) is asked: "
-                                f"{form.sentence} (cv2.projectPoints gives that layout)", mistake=form.mistake)
+            return partial(LAYOUT_SHARE, measured(
+                f"{what}: the pose and the reprojected corners are right, but the corners are returned as an array of "
+                f"shape {(len(corners), 1, 2)} where ({len(corners)}, 2) is asked: {form.sentence} (cv2.projectPoints "
+                "gives that layout)"), mistake=form.mistake)
         return passed(f"rotation within {angle:.2f} deg, translation within {rel:.2%}, "
                       f"reprojection within {reproj_error:.2f} px")
     # diagnosis

@@ -4293,7 +4293,7 @@ class _Variants:
             return 0
         line, changed = fix.changes[0][:2]
         try:   # (the names of the code changed -- `dsize or (height, width)` --, else of its whole line)
-            read = {node.id for node in walk(ast.parse(changed.strip(), mode="eval")) if isinstance(node, ast.Name)}
+            read = {node.id for node in walk(parse(changed.strip(), mode="eval")) if isinstance(node, ast.Name)}
         except (SyntaxError, ValueError, RecursionError, AttributeError):
             read = {node.id for node in walk(helper) if isinstance(node, ast.Name) and getattr(node, "lineno", 0) == line}
         arguments = helper.args
