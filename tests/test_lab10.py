@@ -313,3 +313,15 @@ def test_corners_in_the_layout_cv2_project_points_returns_lose_a_quarter_named_a
     assert posed and all(c.score == pytest.approx(0.75 * c.max_score) for c in posed), [(c.name, c.score) for c in posed]
     assert all("(N, 1, 2) point layout" in c.message and "reshape it to (N, 2)" in c.message for c in posed)
     assert any("without a board" in c.name and c.passed for c in results)
+
+
+def test_an_ignored_distortion_is_told_for_the_call_that_misses_it_only(tmp_path):
+    """cv2.solvePnP given None where cv2.projectPoints already gets dist (07e lab10/06): "pass it to cv2.solvePnP
+    (and to cv2.projectPoints)" asked for a call the code already makes rightly."""
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, MODULE, ("cv2.solvePnP(objp, corners, K, dist)", "cv2.solvePnP(objp, corners, K, None)"))
+    failed = [c for c in check_results(grade(str(folder), ["lab10.ex6"]), "lab10.ex6") if c.score < c.max_score]
+    ignored = [c for c in failed if "dist is ignored" in c.message]
+    assert ignored and all("pass it to cv2.solvePnP too" in c.message and "cv2.projectPoints)" not in c.message
+                           for c in ignored), [c.message for c in failed]

@@ -1104,6 +1104,16 @@ CORNER_ORDER_HINT = Hint(
 DIST_TO_PNP_HINT = Hint(
     "pass it to cv2.solvePnP (and to cv2.projectPoints).", asks=DIST_TO_PNP,
     instead="your code {found}, but not the dist given (None or zeros?).")
+# (said to code that already gives cv2.projectPoints the distortion: the call it misses alone)
+DIST_TO_PNP_ONLY_HINT = Hint(
+    "pass it to cv2.solvePnP too.", asks=DIST_TO_PNP,
+    instead="your code {found}, but not the dist given (None or zeros?).")
+
+
+def dist_to_pnp_said(t: Trial) -> str:
+    """What the pose's ignored distortion asks of ``t``'s code: a call the code already gives dist is not named."""
+    projects = DIST_TO_PROJECT.found(code_of(t).reachable(functions_read(t)))
+    return (DIST_TO_PNP_ONLY_HINT if projects else DIST_TO_PNP_HINT).said(t)
 
 
 LAYOUT_SHARE = 0.75   # of a pose check's points, for a right pose and right corners in cv2.projectPoints's (M, 1, 2)
@@ -1201,7 +1211,7 @@ def judge_pose(t: Trial, what, got, image, R, tv, corners, pattern, square, K, d
             a0, s0, _ = truth.pose_error(r0.ravel(), t0.ravel(), R, tv, pattern, square)
             if truth.rotation_angle_deg(R_got, scene.rotation_from_rvec(r0.ravel())) < 0.3 and \
                     np.linalg.norm(tvec - t0.ravel()) < 0.003 * distance and _dist_ignored_on_probe(t):
-                t.fail(f"{what}: the lens distortion dist is ignored: " + DIST_TO_PNP_HINT.said(t),
+                t.fail(f"{what}: the lens distortion dist is ignored: " + dist_to_pnp_said(t),
                        mistake="dist is ignored")
     for (slip, label) in _wrong_grids_explaining(rvec, tvec, pattern, square, corners, K, dist):
         if (slip, label) in _wrong_grids_on_probe(t):
