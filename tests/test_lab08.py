@@ -448,3 +448,15 @@ def test_a_fallback_marking_every_pair_is_read_where_it_is(tmp_path):
     folder = mutant(tmp_path / "without", "lab08_homographies", without)
     trial = SimpleNamespace(sandbox=SimpleNamespace(submission_dir=folder), lab=SimpleNamespace(module="lab08_homographies"))
     assert _every_pair_fallback(trial) is None
+
+
+def test_a_canvas_sized_from_the_images_sizes_without_a_dtype_is_read_as_the_cause_of_a_float_image(tmp_path):
+    """`np.zeros((max(h1, h2), w1 + w2, 3))` returned as made (07e lab08/05): its size is no `.shape`, yet it is the
+    array returned, float64 by NumPy's default -- read and told, with its line."""
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, "lab08_homographies", (
+        "canvas = np.zeros((max(h1, h2), w1 + w2, 3), dtype=np.uint8)", "canvas = np.zeros((max(h1, h2), w1 + w2, 3))"))
+    failed = [c for c in check_results(grade(str(folder), ["lab08.ex3"]), "lab08.ex3") if c.score < c.max_score]
+    assert failed and all("your code makes `np.zeros((max(h1, h2), w1 + w2, 3))`" in c.message for c in failed), \
+        [c.message for c in failed]

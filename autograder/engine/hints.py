@@ -1152,15 +1152,32 @@ def float_canvas(t) -> str:
     code = code_of(t)
     called = list(dict.fromkeys(call[0] for call in getattr(t, "calls", ()) if call))
     for function in code.reachable(called) if called else ():
+        returned = _returned_as_made(function)
         for node in walk(function):
             if isinstance(node, ast.Call) and _path(node.func) in {f"np.{m}" for m in _CANVAS_MAKERS} \
-                    and node.args and ".shape" in ast.unparse(node.args[0]) \
+                    and node.args and (".shape" in ast.unparse(node.args[0]) or id(node) in returned) \
                     and not any(k.arg == "dtype" for k in node.keywords) \
                     and not (_path(node.func) == "np.full" and len(node.args) > 2):
                 return from_code(f"your code makes `{ast.unparse(node)}` (line {node.lineno}), which NumPy makes "
                                  "float64 when no dtype is given; give it the image's: dtype=image.dtype "
                                  "(or np.uint8)")
     return ""
+
+
+def _returned_as_made(function) -> set[int]:
+    """ids of the calls whose result ``function`` returns as made (`out = np.zeros((h, w1 + w2, 3))`, filled item by
+    item, `return out`): its one binding of that name, and a return of the name alone."""
+    bound: dict = {}
+    for node in walk(function):
+        if isinstance(node, ast.Assign):
+            for target in node.targets:
+                if isinstance(target, ast.Name):
+                    bound.setdefault(target.id, []).append(node.value)
+        elif isinstance(node, (ast.AugAssign, ast.AnnAssign)) and isinstance(node.target, ast.Name):
+            bound.setdefault(node.target.id, []).append(None)
+    names = {node.value.id for node in walk(function) if isinstance(node, ast.Return) and isinstance(node.value, ast.Name)}
+    return {id(values[0]) for name, values in bound.items()
+            if name in names and len(values) == 1 and isinstance(values[0], ast.Call)}
 
 
 def signature_of_def(fn: ast.FunctionDef) -> inspect.Signature | None:
