@@ -46,7 +46,7 @@ from dataclasses import replace
 from typing import Callable, Iterable
 
 from ..loading.parsing import parse, walk
-from .hints import Hint, Predicate, _path, _same, code_of, functions_read
+from .hints import Hint, Predicate, _path, _same, code_of, functions_read, values_bound
 
 # text -> its Hint (or Checklist), for every diagnosis registered with guard() or checklist(); texts marked measured()
 GUARDED: dict[str, "Hint | Checklist"] = {}
@@ -521,14 +521,7 @@ def passes_parameters(function: str, positions: dict[int, str], says: str = "") 
 
     def test(function_node) -> bool:
         parameters = {a.arg for a in function_node.args.args + function_node.args.kwonlyargs}
-        assigned: dict[str, list] = {}
-        for node in walk(function_node):
-            if isinstance(node, ast.Assign):
-                for target in node.targets:
-                    if isinstance(target, ast.Name):
-                        assigned.setdefault(target.id, []).append(node.value)
-            elif isinstance(node, (ast.AugAssign, ast.AnnAssign)) and isinstance(node.target, ast.Name):
-                assigned.setdefault(node.target.id, []).append(None)
+        assigned = values_bound(function_node)
 
         def reads(node, name: str, depth: int = 0, converted: bool = False) -> bool:
             """Whether ``node`` is the parameter ``name`` as it came (``converted``: inside a conversion

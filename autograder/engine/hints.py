@@ -1164,10 +1164,9 @@ def float_canvas(t) -> str:
     return ""
 
 
-def _returned_as_made(function) -> set[int]:
-    """ids of the calls whose result ``function`` returns as made (`out = np.zeros((h, w1 + w2, 3))`, filled item by
-    item, `return out`): its one binding of that name, and a return of the name alone."""
-    bound: dict = {}
+def values_bound(function) -> dict[str, list]:
+    """name -> the values ``function`` binds it to (None for an augmented or annotated assignment), in walk order."""
+    bound: dict[str, list] = {}
     for node in walk(function):
         if isinstance(node, ast.Assign):
             for target in node.targets:
@@ -1175,6 +1174,13 @@ def _returned_as_made(function) -> set[int]:
                     bound.setdefault(target.id, []).append(node.value)
         elif isinstance(node, (ast.AugAssign, ast.AnnAssign)) and isinstance(node.target, ast.Name):
             bound.setdefault(node.target.id, []).append(None)
+    return bound
+
+
+def _returned_as_made(function) -> set[int]:
+    """ids of the calls whose result ``function`` returns as made (`out = np.zeros((h, w1 + w2, 3))`, filled item by
+    item, `return out`): its one binding of that name, and a return of the name alone."""
+    bound = values_bound(function)
     names = {node.value.id for node in walk(function) if isinstance(node, ast.Return) and isinstance(node.value, ast.Name)}
     return {id(values[0]) for name, values in bound.items()
             if name in names and len(values) == 1 and isinstance(values[0], ast.Call)}
