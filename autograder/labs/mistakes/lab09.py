@@ -47,7 +47,7 @@ MISTAKES = {
     "calibrate returning its results in OpenCV's order (rms first)": ("lab09.ext1", reference_def_with(
         "lab09_camera", "calibrate", "return K, dist.ravel()[:5], float(rms)",
         "return float(rms), K, dist.ravel()[:5]"),
-        ["changing `(float(rms), K, dist.ravel()[:5])` to `(K, dist.ravel()[:5], float(rms))`"]),
+        ["changing `float(rms), K, dist.ravel()[:5]` to `K, dist.ravel()[:5], float(rms)`"]),
     "calibrate making the board's grid with a float step": ("lab09.ext1", reference_def_with(
         "lab09_camera", "calibrate", "objp[:, :2] = np.mgrid[0:cols, 0:rows].T.reshape(-1, 2) * square_size",
         "xs, ys = np.meshgrid(np.arange(0.0, cols * square_size, square_size), "

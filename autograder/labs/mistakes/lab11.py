@@ -131,7 +131,7 @@ MISTAKES = {
                 colour = _PALETTE[i % len(_PALETTE)] if out.ndim == 3 else 255
                 cv2.line(out, (int(round(x0)), int(round(y0))), (int(round(x1)), int(round(y1))), colour, 1, cv2.LINE_8)
             return out
-        """, ["changing `(ends[0], ends[1])` to `(ends[0], ends[-1])`"]),
+        """, ["changing `ends[0], ends[1]` to `ends[0], ends[-1]`"]),
     # the blind set 1205b's 11/06: image 2's conversion tested on image 1's channels (the line above copied)
     "epipoles from a basis of the range (scipy.linalg.orth) where the null space belongs": ("lab11.ex5", """
         def epipoles(F):
