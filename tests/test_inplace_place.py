@@ -27,13 +27,34 @@ def test_a_name_holding_the_argument_without_a_copy_is_followed_to_the_write():
             return x
     ''')
     found = writes_into_arguments(functions)
-    assert [(fn.name, ast.unparse(node), alias) for fn, node, alias, _ in found] == \
-        [("helper", "centred -= centred.mean(axis=0)", "centred"), ("scaled", "x[:, 0] /= s", "x")]
+    assert [(fn.name, ast.unparse(node), parameter) for fn, node, parameter, _ in found] == \
+        [("helper", "centred -= centred.mean(axis=0)", "points"), ("scaled", "x[:, 0] /= s", "x")]
     assert ast.unparse(found[0][3]) == "centred = points"
     # (the arithmetic the change showed keeps its own kind: a shift is no division)
     assert [fn.name for fn, *_ in writes_into_arguments(functions, "shifts")] == ["helper"]
     assert "line 4, in `helper`" in place_of_change(functions, "shifts (adds [1, 2] to every row of)")
     assert place_of_change(functions) == ""   # (two places: not certain)
+    # (the parameter the change was measured on decides: a write into another array is not that change's place)
+    assert "in `scaled`" in place_of_change(functions, "", "scaled", "x")
+    assert place_of_change(functions, "", "scaled", "s") == ""
+
+
+def test_a_write_in_a_helper_counts_only_where_the_changed_array_is_passed_to_it():
+    functions = _defs('''
+        def graded(points, other):
+            T = centre(points)
+            scale_in_place(other)
+            return T
+
+        def centre(p):
+            p -= p.mean(axis=0)
+            return p
+
+        def scale_in_place(q):
+            q /= 2
+    ''')
+    assert "in `centre`: `p -= p.mean(axis=0)`" in place_of_change(functions, "", "graded", "points")
+    assert "in `scale_in_place`" in place_of_change(functions, "", "graded", "other")
 
 
 def test_copies_and_names_rebound_are_not_writes_into_the_argument():

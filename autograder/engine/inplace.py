@@ -255,7 +255,7 @@ _VERB_OPS = {"divides": (ast.Div, ast.FloorDiv, ast.Mult), "multiplies": (ast.Mu
              "shifts": (ast.Add, ast.Sub)}
 
 
-def _held(value, aliases: set) -> str | None:
+def _held(value, aliases) -> str | None:
     """The name of ``aliases`` that ``value`` holds without a copy (`x`, `x[:]`, `x.T`, `x.reshape(-1, 2)`,
     `np.asarray(x, dtype=float)`), or None."""
     if isinstance(value, ast.Name):
@@ -274,7 +274,7 @@ def _held(value, aliases: set) -> str | None:
 
 
 def writes_into_arguments(functions, verb: str = "") -> list[tuple]:
-    """[(def, statement, the alias written, the statement that made the alias or None)]: each statement of
+    """[(def, statement, the parameter written, the statement that made the alias or None)]: each statement of
     ``functions`` (the student's defs) that writes into an array one of its parameters was given -- an augmented
     assignment (`centred -= c`) or an item assignment (`pts[:, 0] = ...`) on the parameter or on a name holding it
     without a copy (`centred = points`, `x = np.asarray(x)`). ``verb``, :func:`how_changed`'s, keeps the
@@ -283,41 +283,80 @@ def writes_into_arguments(functions, verb: str = "") -> list[tuple]:
     allowed = next((ops for word, ops in _VERB_OPS.items() if verb.startswith(word)), None)
     found = []
     for fn in functions:
-        parameters = {a.arg for a in fn.args.posonlyargs + fn.args.args + fn.args.kwonlyargs}
-        aliases = {name: None for name in parameters}
+        aliases = _alias_pass(fn)
+        for node, written in aliases.writes:
+            if allowed is None or (isinstance(node, ast.AugAssign) and isinstance(node.op, allowed)):
+                found.append((fn, node) + written)
+    return found
+
+
+class _alias_pass:
+    """One pass over ``fn``'s assignments in line order: ``held`` {name: (the parameter it holds without a copy, the
+    statement that made it so or None)} as the def ends, ``ever`` every name that held a parameter (flow-insensitive),
+    and ``writes`` [(statement, (parameter, alias statement))] of the writes into a held array."""
+
+    def __init__(self, fn):
+        parameters = [a.arg for a in fn.args.posonlyargs + fn.args.args + fn.args.kwonlyargs]
+        held = {name: (name, None) for name in parameters}
+        self.ever: dict[str, str] = {name: name for name in parameters}
+        self.writes: list = []
         statements = sorted((node for node in walk(fn) if isinstance(node, (ast.Assign, ast.AugAssign))),
                             key=lambda node: (node.lineno, node.col_offset))
         for node in statements:
             if isinstance(node, ast.AugAssign):
                 target = node.target.value if isinstance(node.target, ast.Subscript) else node.target
-                if isinstance(target, ast.Name) and target.id in aliases \
-                        and (allowed is None or isinstance(node.op, allowed)):
-                    found.append((fn, node, target.id, aliases[target.id]))
+                if isinstance(target, ast.Name) and target.id in held:
+                    self.writes.append((node, held[target.id]))
                 continue
             for target in node.targets:
-                if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name) \
-                        and target.value.id in aliases and allowed is None:
-                    found.append((fn, node, target.value.id, aliases[target.value.id]))
+                if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name) and target.value.id in held:
+                    self.writes.append((node, held[target.value.id]))
                 elif isinstance(target, ast.Name):
-                    held = _held(node.value, set(aliases))
-                    if held is not None:
-                        aliases[target.id] = node if held in parameters or aliases.get(held) is None else aliases[held]
+                    source = _held(node.value, held)
+                    if source is not None:
+                        root, made = held[source]
+                        held[target.id] = (root, made or node)
+                        self.ever[target.id] = root
                     else:
-                        aliases.pop(target.id, None)
-    return found
+                        held.pop(target.id, None)
+        self.held = held
 
 
-def place_of_change(functions, verb: str = "") -> str:
+def place_of_change(functions, verb: str = "", function: str = "", parameter: str = "") -> str:
     """The sentence saying where the student's code writes into its caller's array, when one statement of
     ``functions`` does (:func:`writes_into_arguments`); "" when none or several do (the place is then not
-    certain)."""
+    certain). Given the graded ``function`` whose ``parameter`` was changed, only writes into that parameter count:
+    in ``function`` itself, and in a helper it calls with that array (or a name holding it) as an argument."""
     found = writes_into_arguments(functions, verb)
+    if function and parameter:
+        targets = _written_through(functions, function, parameter)
+        found = [entry for entry in found if entry[2] in targets.get(entry[0].name, ())]
     if len(found) != 1:
         return ""
-    fn, statement, alias, made = found[0]
+    fn, statement, _, made = found[0]
     text = ast.unparse(statement)
     where = f"line {statement.lineno}, in `{fn.name}`"
     if made is None:
         return f"Your code writes into it at {where}: `{text}` changes the array given."
     return (f"Your code writes into it at {where}: `{text}` changes the array given, which `{ast.unparse(made)}` "
             f"(line {made.lineno}) does not copy.")
+
+
+def _written_through(functions, function: str, parameter: str) -> dict[str, set]:
+    """{def name: the parameters through which it may write into ``function``'s ``parameter``}: that parameter in
+    ``function``, and each helper's parameter that ``function`` passes it to (one call deep)."""
+    defs = {fn.name: fn for fn in functions}
+    graded = defs.get(function)
+    if graded is None:
+        return {}
+    names = {name for name, root in _alias_pass(graded).ever.items() if root == parameter}
+    targets = {function: {parameter}}
+    for node in walk(graded):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in defs \
+                and node.func.id != function:
+            helper = defs[node.func.id].args
+            positional = [a.arg for a in helper.posonlyargs + helper.args]
+            for name, value in list(zip(positional, node.args)) + [(k.arg, k.value) for k in node.keywords]:
+                if name and any(isinstance(n, ast.Name) and n.id in names for n in walk(value)):
+                    targets.setdefault(node.func.id, set()).add(name)
+    return targets

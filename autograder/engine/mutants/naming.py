@@ -1409,9 +1409,12 @@ def _place_of_change(verdict, trial, called) -> str:
     if not code.functions:
         return ""
     verb = re.search(r"\(\) (\w+)", str(verdict.message))
+    changed = re.search(r"the caller's `(\w+)`", str(verdict.message))
     # (the functions the changing call ran: the last call's, where the check named the change)
     function = trial.calls[-1][0] if getattr(trial, "calls", None) else None
-    return place_of_change(code.reachable([function] if function else sorted(called)), verb.group(1) if verb else "")
+    if function is None or changed is None:
+        return ""
+    return place_of_change(code.reachable([function]), verb.group(1) if verb else "", function, changed.group(1))
 
 
 # An operation a mutant's words say the code does, and what the code must hold to do it: a name saying the
