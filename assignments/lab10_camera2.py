@@ -189,7 +189,8 @@ def estimate_pose(image, pattern_size, square_size, K, dist=None):
     tvec : (3,) float array
         Board origin (corner 0) in camera coordinates: ``X_cam = R X_board + tvec``.
     reprojected : (M, 2) float array
-        The object points projected with the pose (same order as the corners).
+        The object points projected with the pose (same order as the corners;
+        ``cv2.projectPoints`` gives them as (M, 1, 2): reshape to (M, 2)).
 
     If no board is found: ``rvec`` and ``tvec`` full of NaN and
     ``reprojected = np.zeros((0, 2))``.
