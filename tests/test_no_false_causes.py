@@ -460,3 +460,19 @@ def test_a_test_of_d_against_a_number_is_no_mark_of_the_columns_without_a_partne
 
     source = f"def f(left, right, n):\n    best = None\n    for d in range(n):\n        cost = left - right\n        {test}\n    return best\n"
     assert _marks_left_border(read_code(source).functions["f"]) == marks
+
+
+def test_a_floor_division_is_named_as_such_not_by_a_change_that_keeps_it(tmp_path):
+    """`s = (S[0] + S[1]) // 2` (E all zeros, blind set 07c lab11/04): `// 1` and `2 // (...)` give E's own scale
+    exactly, by the floor of a sum near 1.41 being 1; the floor is the slip, `/ 2` the change told."""
+    source = """
+        def essential_8point(pts1, pts2, K1, K2):
+            x1 = _homogeneous(pts1) @ np.linalg.inv(K1).T
+            x2 = _homogeneous(pts2) @ np.linalg.inv(K2).T
+            U, S, Vt = np.linalg.svd(_eight_point_core(x1, x2))
+            s = (S[0] + S[1]) // 2
+            return U @ np.diag([s, s, 0]) @ Vt
+        """
+    result = grade(mutant(tmp_path, "lab11_two_view", source), ["lab11.ex3"], pictures="none")
+    failed = failing(result, "lab11.ex3")
+    assert failed and all("to `(S[0] + S[1]) / 2`" in c.message for c in failed), [c.message for c in failed]

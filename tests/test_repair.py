@@ -271,7 +271,8 @@ def test_changes_of_the_students_own_code_only():
 
 def test_a_default_written_out_a_count_for_a_share_and_twin_names_crossed_in_one_entry():
     """`_pyramid(a, 4)` beside `levels=4` (the parameter where its default is written), `w = best.sum()`
-    (a share where a count is), `beta * cy + (1 - alpha) * cx` (cx and cy exchanged throughout one entry),
+    (a share where a count is), `beta * cy + (1 - alpha) * cx` (cx and cy exchanged throughout one entry,
+    and each of two pairs of twins in one formula),
     and a method taken on a sum bracketed (`(x - 0.5).astype(...)`, not `x - 0.5.astype(...)`): the
     student's code only."""
     source = textwrap.dedent("""
@@ -282,11 +283,15 @@ def test_a_default_written_out_a_count_for_a_share_and_twin_names_crossed_in_one
             w = best.sum()
             entry = np.sin(a) * cy + (1 - np.cos(a)) * cx
             column = ((a + 0.5) * 3 - 0.5).astype(np.int64)
-            return _pyramid(a, 4), w, [entry, column], radius + 1
+            y_d = cy * a + p2 * (a + 2 * cy ** 2) + 2 * p1 * cx * cy
+            return _pyramid(a, 4), w, [entry, column], radius + 1, y_d
     """)
     student = {(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]}
     assert {("default_written", "levels"), ("fraction", "best.mean()"),
             ("crossed", "np.sin(a) * cx + (1 - np.cos(a)) * cy"),
+            # (a formula holding two pairs of twins, cx/cy and p1/p2: each pair exchanged on its own -- 07e lab09/08)
+            ("crossed", "cy * a + p1 * (a + 2 * cy ** 2) + 2 * p2 * cx * cy"),
+            ("crossed", "cx * a + p2 * (a + 2 * cx ** 2) + 2 * p1 * cy * cx"),
             ("astype_float", "((a + 0.5) * 3 - 0.5).astype(np.float64)")} <= student
     assert ("default_written", "radius") not in student   # (1 is everywhere: no default told from it)
     for operator, text in student:   # every change written out is code

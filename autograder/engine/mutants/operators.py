@@ -5918,6 +5918,9 @@ def _counted_by_length(node, words):
         yield "counted", f"range(len({parameter.arg}))", ""
 
 
+_CROSSED_PAIRS = 3
+
+
 def _crossed_twins(node, words):
     """Two twin names exchanged throughout one entry of a matrix written out, or one assigned value:
     `beta * cy + (1 - alpha) * cx` for `beta * cx + (1 - alpha) * cy` (each name alone is wrong,
@@ -5928,17 +5931,18 @@ def _crossed_twins(node, words):
             or not isinstance(node, (ast.BinOp, ast.Call, ast.UnaryOp)):
         return
     read = list(dict.fromkeys(n.id for n in walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)))
+    # (each pair of twins on its own: `y * radial + p2 * (r2 + 2 * y ** 2) + 2 * p1 * x * y` holds x and y
+    # as well as p1 and p2; a few pairs at most, a longer formula's every pair is no one slip)
     pairs = [(a, b) for i, a in enumerate(read) for b in read[i + 1:] if twin_names(a, b)]
-    if len(pairs) != 1:
+    if len(pairs) > _CROSSED_PAIRS:
         return
-    a, b = pairs[0]
     # (names in an index or a tuple -- `np.mgrid[0:rows, 0:cols]`, `(h, w)` -- are swap_items' to exchange,
     # shown as the smaller change)
     inside = {id(n) for part in walk(node) if isinstance(part, (ast.Slice, ast.Tuple, ast.List))
               for n in walk(part)}
-    if any(isinstance(n, ast.Name) and n.id in (a, b) and id(n) in inside for n in walk(node)):
-        return
-    yield "crossed", _names_exchanged(node, a, b), ""
+    for a, b in pairs:
+        if not any(isinstance(n, ast.Name) and n.id in (a, b) and id(n) in inside for n in walk(node)):
+            yield "crossed", _names_exchanged(node, a, b), ""
 
 
 def _names_exchanged(node, a: str, b: str) -> str:

@@ -1953,6 +1953,11 @@ def _one_argument_twice(fix: Fix) -> bool:
     return any(repeated(after) > repeated(before) for _, before, after in fix.changes)
 
 
+def _floor_kept(fix: Fix, floors: set) -> bool:
+    """Whether a change keeps a floor division on a line where making it a true division mends too."""
+    return fix.operator != "true_division" and fix.changes[0][0] in floors and "//" in fix.changes[0][2]
+
+
 def _assigns_itself(text: str) -> bool:
     """Whether ``text`` is an assignment of names to themselves (`P2, P1 = (P2, P1)`): a statement doing nothing."""
     try:
@@ -3259,10 +3264,14 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     refused_type = bool(getattr(trial, "raised", None)) and trial.raised[0] == function \
         and _TYPE_REFUSED.search(str(trial.raised[3] or "")) is not None
     mirrored = any(f.operator == "mirror" for _, f in shown)
+    # (a floor division made a true one before a change that keeps it: `(S[0] + S[1]) // 2` -> `2 // (S[0] +
+    # S[1])` gives E's own scale exactly, the floor of 1.41 being 1 -- the slip is the floor)
+    floors = {f.changes[0][0] for _, f in shown if f.operator == "true_division"}
     shown = sorted(((m, f) for m, f in shown if not student.renormalises(m)
                     and not student.colours_with_a_size(m)),
                    key=lambda pair: (pair[0].key not in known, not student.removes_a_mask_guard(pair[0]),
                                      not (refused_type and _converts(pair[0])),
+                                     _floor_kept(pair[1], floors),
                                      pair[0].key not in exactly, pair[1].operator != "twin_test" or mirrored,
                                      not student.extra_block(pair[0]),
                                      _undoes_a_step(student, *pair),
