@@ -781,7 +781,7 @@ def test_lab12_colour_warped_as_it_is(speak):
 
 def test_lab12_no_partner_columns(speak):
     said = speak(lab12.NO_PARTNER_HINT, SSD, "block_matching")   # the costs start at np.inf
-    assert "infinite cost" not in said and "look at which columns it marks for each d" in said
+    assert "give those disparities an infinite cost" not in said and "look at which entries it marks for each d (the columns x < d, in every row)" in said
     zero_border = SSD.replace("np.full((max_disparity + 1,) + L.shape, np.inf)", "np.zeros((max_disparity + 1,) + L.shape)")
     assert speak(lab12.NO_PARTNER_HINT, zero_border, "block_matching").endswith(
         "give those disparities an infinite cost (or leave the pixel invalid)")

@@ -326,3 +326,39 @@ def test_code_that_reads_cost_is_not_told_it_ignores_it_when_both_costs_give_one
     assert gain, failed
     assert "ignored" not in gain[0].message and gain[0].mistake != "the cost argument is ignored", gain[0]
     assert "although your block_matching reads cost" in gain[0].message
+
+
+def test_rows_blanked_where_columns_belong_are_not_told_as_a_loop_starting_late(tmp_path):
+    """`costs[d, :d] = np.inf` (the first d rows of the d-th slice blanked where its first d columns belong, blind
+    set 08a lab12/03) leaves the map's first row empty: the code loops over no rows, so no loop starting late is
+    guessed; the slice made the next axis's is the change told."""
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, "lab12_stereo", (
+        "costs[d, :, :d] = np.inf                 # x - d falls outside the right image", "costs[d, :d] = np.inf"))
+    result = grade(str(folder), ["lab12.ex4"], pictures="none")
+    failed = [c for c in check_results(result, "lab12.ex4") if c.score < c.max_score]
+    assert failed and not any("a loop over the rows" in c.message for c in failed), [c.message for c in failed]
+    assert any("to `costs[d, :, :d]`" in c.message for c in failed), [c.message for c in failed]
+    assert any(c.mistake == lab12.EDGE_ROW_EMPTY for c in failed)
+
+
+def test_a_colour_pair_turned_grey_is_told_with_the_conversion_read_in_the_code(tmp_path):
+    """A rectification converting its inputs to grey (blind set 08a lab12/02) returns (H, W) for BGR: the shape is
+    named, with the conversion quoted from the code; a channel taken (no conversion to read) is told the shape only."""
+    source = """
+        _rectify_as_given = rectify
+        def rectify(img_l, img_r, K1, K2, R, T):
+            img_l = cv2.cvtColor(img_l, cv2.COLOR_BGR2GRAY) if img_l.ndim == 3 else img_l
+            img_r = cv2.cvtColor(img_r, cv2.COLOR_BGR2GRAY) if img_r.ndim == 3 else img_r
+            return _rectify_as_given(img_l, img_r, K1, K2, R, T)
+        """
+    result = grade(str(mutant(tmp_path, "lab12_stereo", source)), ["lab12.ex3"], pictures="none")
+    failed = [c for c in check_results(result, "lab12.ex3") if c.score < c.max_score]
+    assert any("your code converts the colour images to grey (`cv2.cvtColor(img_l, cv2.COLOR_BGR2GRAY)`, line"
+               in c.message for c in failed), [c.message for c in failed]
+    taken = source.replace("cv2.cvtColor(img_l, cv2.COLOR_BGR2GRAY)", "img_l[..., 1]").replace(
+        "cv2.cvtColor(img_r, cv2.COLOR_BGR2GRAY)", "img_r[..., 1]")
+    result = grade(str(mutant(tmp_path / "taken", "lab12_stereo", taken)), ["lab12.ex3"], pictures="none")
+    failed = [c for c in check_results(result, "lab12.ex3") if c.score < c.max_score]
+    assert failed and not any("converts the colour images" in c.message for c in failed)

@@ -15,6 +15,7 @@ import pytest
 
 from autograder.engine import traced
 from autograder.engine.mutants import repair
+from autograder.loading.parsing import parse
 from autograder.engine.mutants.operators import Mutant
 from autograder.engine.runner import grade
 from autograder.sandbox.supervisor import Limits, Sandbox
@@ -6004,3 +6005,39 @@ def test_a_flag_the_reference_never_passes_is_told_taken_out_not_the_sign_that_c
     assert failed and any("`cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP` to `cv2.INTER_LINEAR`" in c.message for c in failed), \
         [c.message for c in failed]
     assert not any("`[1, -s, 0]`" in c.message for c in failed), [c.message for c in failed]
+
+
+def test_a_divisor_rounded_before_it_divides_is_offered_the_division_last():
+    """`u // (width // 2 ** n)` (a stripe's width rounded first: wrong wherever 2 ** n does not divide the width,
+    blind set 08a lab12/06) is offered `u * 2 ** n // width`; a single floor division is not regrouped."""
+    source = textwrap.dedent("""
+        def graded(u, width, n):
+            return u // (width // 2 ** n), u // width
+    """)
+    changes = [(m.operator, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]]
+    assert changes.count(("regroup", "divisor_rounded")) == 1, changes
+    student = repair._Student(source, parse(source), frozenset({"graded"}))
+    told = [student.fix(m).changes[0][2] for m in student.ordered("graded") if m.operator == "regroup"]
+    assert "u * 2 ** n // width" in told, told
+
+
+def test_a_line_unlike_its_siblings_is_offered_as_they_are_written():
+    """The mask's pyramid made by a nearest-neighbour resize beside two images' pyrDown (blind set 08a lab08/08):
+    the line written as its two siblings are, in its own name; a line beside a single other line is not."""
+    source = textwrap.dedent("""
+        import cv2
+
+        def graded(A, B, M, levels):
+            gA, gB, gM = [A], [B], [M]
+            for i in range(levels - 1):
+                gA.append(cv2.pyrDown(gA[-1]))
+                gB.append(cv2.pyrDown(gB[-1]))
+                gM.append(cv2.resize(gM[-1], (gA[-1].shape[1], gA[-1].shape[0]), interpolation=cv2.INTER_NEAREST))
+            for i in range(levels - 1):
+                gA.append(cv2.pyrUp(gA[-1]))
+                gM.append(cv2.resize(gM[-1], None, fx=2, fy=2))
+            return gA, gB, gM
+    """)
+    student = repair._Student(source, parse(source), frozenset({"graded"}))
+    told = [student.fix(m).changes[0] for m in student.ordered("graded") if m.operator == "sibling_line"]
+    assert [(line, after) for line, _, after in told] == [(9, "gM.append(cv2.pyrDown(gM[-1]))")], told

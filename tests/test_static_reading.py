@@ -2124,3 +2124,23 @@ def test_the_last_turns_value_read_after_a_loop_is_told_to_read_the_name_the_bes
     reading = read_source(source, frozenset())
     [finding] = [f for found in reading.findings.values() for f in found]
     assert "use `mask`, which your code makes from it after the loop, there" in finding.sentence, finding.sentence
+
+
+def test_whole_numbers_read_from_another_integer_array_are_not_truncated():
+    """A DP's backtrack writes into an integer map what it reads from an integer table (`disp[:, x - 1] =
+    back[x][rows, disp[:, x]]`, blind set 08a lab12/05): nothing is cut, no finding; a ratio written is one."""
+    source = """
+        def backtrack(M, W, H, D):
+            back = np.zeros((W, H, D), dtype=np.int64)
+            rows = np.arange(H)
+            disp = np.zeros((H, W), dtype=np.int64)
+            disp[:, W - 1] = np.argmin(M[W - 1], axis=1)
+            for x in range(W - 1, 0, -1):
+                disp[:, x - 1] = {value}
+            return disp
+        """
+    truncated = "an integer array: the values written into it are truncated"
+    assert truncated not in one(source.format(value="back[x][rows, disp[:, x]]"))
+    assert truncated not in one(source.format(value="back[x][rows, disp[:, x]] + 1"))
+    assert truncated in one(source.format(value="M[x][rows, disp[:, x]]"))
+    assert truncated in one(source.format(value="back[x][rows, disp[:, x]] * s"))

@@ -153,16 +153,21 @@ def _products(function) -> list[ast.AST]:
 
 
 def _camera_without_k(function) -> bool:
-    """A stacked ``[R | t]`` (or ``[I | 0]``) assigned to a name or passed on, that no product takes."""
+    """A stacked ``[R | t]`` (or ``[I | 0]``) assigned to a name or passed on, that no product takes (and that
+    takes none: ``np.hstack([K @ R, t])`` has K in it, on R's columns only)."""
     multiplied = _products(function)
     multiplied_names = {n.id for operand in multiplied for n in walk(operand) if isinstance(n, ast.Name)}
     multiplied_nodes = {id(n) for operand in multiplied for n in walk(operand)}
+
+    def bare(stack) -> bool:
+        return _stacked(stack) and id(stack) not in multiplied_nodes and not any(
+            id(n) in multiplied_nodes for n in walk(stack) if n is not stack)
     for node in walk(function):
-        if isinstance(node, ast.Assign) and _stacked(node.value) and id(node.value) not in multiplied_nodes:
+        if isinstance(node, ast.Assign) and bare(node.value):
             names = {t.id for t in node.targets if isinstance(t, ast.Name)}
             if names and not names & multiplied_names:
                 return True
-        if isinstance(node, ast.Call) and any(_stacked(a) and id(a) not in multiplied_nodes for a in node.args) \
+        if isinstance(node, ast.Call) and any(bare(a) for a in node.args) \
                 and _path(node.func).rsplit(".", 1)[-1] not in _STACKS:
             return True
     return False

@@ -983,8 +983,12 @@ def call_rectify(t: Trial, pair):
     for name, image in (("rect_l", rect_l), ("rect_r", rect_r)):
         if image.shape != shape:
             form = shape_form(image.shape, shape)   # the channels not kept: grey for BGR, BGR for grey
+            converted = _grey_conversion(t) if image.ndim == 2 and len(shape) == 3 else ""
             t.fail(f"{what}: {name} has shape {image.shape}; expected {shape} (the input size)"
-                   + (f": {form.sentence}" if form else ""), mistake=form.mistake if form else "")
+                   + (f": {form.sentence}" if form else "")
+                   + (from_code(f"; your code converts the colour images to grey ({converted}) before warping "
+                                "them: warp them as they are") if converted else ""),
+                   mistake=form.mistake if form else "")
     return rect_l, rect_r, H1.astype(np.float64), H2.astype(np.float64)
 
 
@@ -1544,6 +1548,17 @@ def _converts_colour(function) -> bool:
         or keyword(".mean", "axis", 2).holds([function])
 
 
+def _grey_conversion(t: Trial) -> str:
+    """The first conversion to grey in rectify's code (`cv2.cvtColor(img_l, cv2.COLOR_BGR2GRAY)`), quoted with its
+    line; "" where there is none."""
+    for function in code_of(t).reachable(["rectify"]):
+        for node in walk(function):
+            if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "cvtColor" \
+                    and any(_path(a).endswith("2GRAY") for a in [*node.args[1:2], *(k.value for k in node.keywords)]):
+                return f"`{ast.unparse(node)}`, line {node.lineno}"
+    return ""
+
+
 # Told only to code that converts the images somewhere (code warping them as they come does what it says).
 COLOUR_HINT = Hint("warp the colour images as they are (cv2.warpPerspective takes BGR images).",
                    asks=~Predicate("converts a colour image", _converts_colour), instead="")
@@ -1924,13 +1939,34 @@ def name_left_image_shifted(t: Trial, what: str, got, max_disparity: int):
 
 
 EDGE_ROW_LEFT_OUT = "the first or last row of the map never computed"
+EDGE_ROW_EMPTY = "the first or last row of the map has no disparity"
+
+
+_ROW_NAMES = frozenset({"y", "row", "r", "v", "yy", "iy", "i_row", "row_index"})
+_HEIGHT_NAMES = frozenset({"h", "height", "rows", "n_rows", "nrows", "H", "img_h", "image_height"})
+
+
+def _loops_over_rows(function) -> bool:
+    """Whether a def runs a `for` loop over the rows: over a `range` whose variable is a row's name (`for y in
+    range(1, h)`) or whose bound is the height (`range(height - 1)`, `range(left.shape[0])`) -- one that may start
+    late or stop short. (A loop over the disparities of a (D, H, W) volume, `costs[d] = ...`, is not.)"""
+    for loop in walk(function):
+        if isinstance(loop, ast.For) and isinstance(loop.target, ast.Name) and isinstance(loop.iter, ast.Call) \
+                and _path(loop.iter.func) == "range":
+            bounds = [n for argument in loop.iter.args for n in walk(argument)]
+            if loop.target.id in _ROW_NAMES or any(isinstance(n, ast.Name) and n.id in _HEIGHT_NAMES for n in bounds) \
+                    or any(isinstance(n, ast.Subscript) and isinstance(n.value, ast.Attribute) and n.value.attr == "shape"
+                           and isinstance(n.slice, ast.Constant) and n.slice.value == 0 for n in bounds):
+                return True
+    return False
 
 
 def fail_if_an_edge_row_left_out(t: Trial, what: str, got, true_disparity):
     """Fail when the map's first or last row has no disparity at all while the row beside it and the opposite
     edge row have one at most pixels, and the truth at most of it: a loop over the rows one short
-    (`range(height - 1)`). A border a block leaves invalid is left alike at the top and the bottom (StereoBM
-    leaves block_size // 2 rows at each), and is not this."""
+    (`range(height - 1)`), said so where the code loops over the rows (where it does not -- a slice blanking
+    rows where it meant columns -- the row is told empty, no cause guessed). A border a block leaves invalid is
+    left alike at the top and the bottom (StereoBM leaves block_size // 2 rows at each), and is not this."""
     got = np.asarray(got, np.float64)
     if got.ndim != 2 or got.shape[0] < 3:
         return
@@ -1940,11 +1976,14 @@ def fail_if_an_edge_row_left_out(t: Trial, what: str, got, true_disparity):
     last = got.shape[0] - 1
     for edge, beside, opposite, which in ((last, last - 1, 0, "last"), (0, 1, last, "first")):
         if computed[edge] == 0 and computed[beside] >= 0.5 and computed[opposite] >= 0.5 and known[edge] >= 0.5:
-            t.fail(measured(f"{what}: row {edge}, the {which} row of the map, has no disparity at all (every pixel "
-                            f"invalid), where the row beside it has one at {computed[beside]:.0%} of its pixels, the "
-                            f"{'first' if which == 'last' else 'last'} row at {computed[opposite]:.0%}, and the truth "
-                            f"at {known[edge]:.0%} of this row: the {which} row is never computed (a loop over the "
-                            f"rows that {'stops one short' if which == 'last' else 'starts one late'}?)"),
+            said = (f"{what}: row {edge}, the {which} row of the map, has no disparity at all (every pixel "
+                    f"invalid), where the row beside it has one at {computed[beside]:.0%} of its pixels, the "
+                    f"{'first' if which == 'last' else 'last'} row at {computed[opposite]:.0%}, and the truth "
+                    f"at {known[edge]:.0%} of this row")
+            if not any(map(_loops_over_rows, code_of(t).reachable([what.split("(")[0]]))):
+                t.fail(measured(said), mistake=EDGE_ROW_EMPTY)
+            t.fail(measured(f"{said}: the {which} row is never computed (a loop over the rows that "
+                            f"{'stops one short' if which == 'last' else 'starts one late'}?)"),
                    mistake=EDGE_ROW_LEFT_OUT)
 
 
@@ -2006,10 +2045,13 @@ def fail_if_mostly_past_the_edge(t: Trial, what: str, got, truth_disparity, thre
 # Told only to code that marks no column as without a partner (an infinite cost, a slice up to d, a test against d).
 NO_PARTNER_HINT = Hint(measured("where x - d < 0 the block has no partner in the right image: ")
                        + "give those disparities an infinite cost (or leave the pixel invalid)",
-                       asks=Predicate("marks the columns without a partner", _marks_left_border),
+                       asks=Predicate("gives some costs a value of their own (an infinite cost, a slice up to d "
+                                      "or a test of d against a column)", _marks_left_border),
+                       # (read leniently: which entries the code marks is not read -- `costs[d, :d]` marks rows --,
+                       # so the tip says where the marks belong, not that the code puts them there)
                        instead=measured("where x - d < 0 the block has no partner in the right image: ")
-                       + "your code {found}: look at which columns it marks for each d, and at what becomes of "
-                         "them afterwards")
+                       + "your code {found}: look at which entries it marks for each d (the columns x < d, in every "
+                         "row), and at what becomes of them afterwards")
 
 
 @ex4.check("block_matching (SSD, block_size=9) on random-dot planes", points=3, timeout=STEREO_TIMEOUT)

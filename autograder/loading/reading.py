@@ -435,7 +435,8 @@ def _integer_arrays(name, function) -> list[Finding]:
             continue
         for target in node.targets:
             if isinstance(target, ast.Subscript) and isinstance(target.value, ast.Name) \
-                    and target.value.id in integer_arrays and _computed(node.value):
+                    and target.value.id in integer_arrays and _computed(node.value) \
+                    and not _integral_by_making(node.value, integer_arrays):
                 made = integer_arrays[target.value.id]
                 bindings = _bindings(function) if bindings is None else bindings
                 fractional = _fractional(node.value, bindings)
@@ -446,6 +447,28 @@ def _integer_arrays(name, function) -> list[Finding]:
                                 "their fractions are cut off; make it a float array (dtype=float)",
                                 needs="" if fractional else "whole numbers", certain=fractional)]
     return []
+
+
+_INTEGRAL_OPERATIONS = (ast.Add, ast.Sub, ast.Mult, ast.FloorDiv, ast.Mod)
+
+
+def _integral_by_making(node, integer_arrays: dict) -> bool:
+    """Whether a value written is whole by its making: read from one of the integer arrays (a backtrack's
+    `disp[:, x - 1] = back[x][rows, disp[:, x]]`), or whole-number arithmetic on such values: nothing to cut."""
+    if isinstance(node, ast.Subscript):
+        base = node.value
+        while isinstance(base, ast.Subscript):
+            base = base.value
+        return isinstance(base, ast.Name) and base.id in integer_arrays
+    if isinstance(node, ast.Name):
+        return node.id in integer_arrays
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+        return _integral_by_making(node.operand, integer_arrays)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, _INTEGRAL_OPERATIONS):
+        sides = (node.left, node.right)
+        return any(_integral_by_making(side, integer_arrays) for side in sides) and all(
+            _integral_by_making(side, integer_arrays) or _constant_integers(side) for side in sides)
+    return False
 
 
 def _integer_dtype_given(call: ast.Call) -> bool:

@@ -113,6 +113,7 @@ OPERATORS = {
     "compare": ("compar", "strict", "equal"),         # x > 0 -> x >= 0, x < t -> x > t
     "regroup": ("bracket", "parenthes", "order"),     # a - b + c -> a - (b + c), a / b * c -> a / (b * c)
     "twin_step": ("missing", "also", "both", "only"),  # (x / w, y) -> (x / w, y / w): a step done to one twin only
+    "sibling_line": ("as the", "like", "sibling", "others"),   # gM.append(cv2.resize(gM[-1], ...)) -> (cv2.pyrDown(gM[-1]))
     "twin_argument": ("missing", "also", "both", "only"),  # f(A1 @ T1.T, A2) -> f(A1 @ T1.T, A2 @ T2.T)
     "measure": ("square", "absolute", "abs", "**"),   # np.abs(d) <-> d ** 2: the other measure of a difference
     "power_inside": ("square", "mean", "sum", "**"),  # np.mean(d) ** 2 <-> np.mean(d ** 2)
@@ -1295,6 +1296,10 @@ def _make_regroup(node, payload):
         inner = node.left
         return ast.BinOp(ast.BinOp(copy_tree(inner.left), node.op, copy_tree(node.right)), inner.op,
                          copy_tree(inner.right))
+    if payload == "divisor_rounded":   # a // (b // c) -> a * c // b
+        inner = node.right
+        return ast.BinOp(ast.BinOp(copy_tree(node.left), ast.Mult(), copy_tree(inner.right)), ast.FloorDiv(),
+                         copy_tree(inner.left))
     if payload in ("factor_last", "factor_first"):   # (a - b) * c -> a - b * c, or a * c - b
         inner = node.left
         if payload == "factor_last":
@@ -1408,6 +1413,10 @@ def _make_row_column(node, payload):
     made = copy_tree(node)
     if payload == "column":   # X[k] -> X[:, k]
         made.slice = ast.Tuple([ast.Slice(None, None, None), copy_tree(node.slice)], ast.Load())
+    elif payload == "next_axis":   # costs[d, :d] -> costs[d, :, :d]: the run of rows made a run of columns
+        items = list(node.slice.elts) if isinstance(node.slice, ast.Tuple) else [node.slice]
+        made.slice = ast.Tuple([*map(copy_tree, items[:-1]), ast.Slice(None, None, None), copy_tree(items[-1])],
+                               ast.Load())
     else:                     # X[:, k] -> X[k]
         made.slice = copy_tree(node.slice.elts[1])
     return made
@@ -1954,7 +1963,7 @@ def _make_constant(node, payload):
     return ast.Constant(payload)   # a condition made constant: the guard it is removed (see repair)
 
 
-_MAKE = {**{name: _make_written for name in ("einsum", "map_whole", "unflip", "like_input", "append_extend", "last_row", "per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
+_MAKE = {**{name: _make_written for name in ("einsum", "sibling_line", "map_whole", "unflip", "like_input", "append_extend", "last_row", "per_item", "estimator", "stack_last", "swap_axes", "scale_xy", "neutral",
                                               "unused_name", "twin_test", "drop_epsilon", "twin_values",
                                               "chosen_value", "add_stacked", "middle_axis", "widen", "bracket", "perspective_warp",
                                               "x_difference", "colour_axis", "drop_w", "power_xor", "identity", "half_pixel", "grid_axis", "initial", "reshape_back", "astype_float",
@@ -4085,6 +4094,9 @@ def _student_changes(node, parent, parents, words):
     if isinstance(node, ast.BinOp) and isinstance(node.op, _BITWISE) \
             and isinstance(node.left, ast.BinOp) and isinstance(node.left.op, _BINDS_BEFORE_BITS):
         yield "regroup", "last", ""      # `a + b << 2` is `(a + b) << 2`: `a + (b << 2)` was meant
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.FloorDiv) \
+            and isinstance(node.right, ast.BinOp) and isinstance(node.right.op, ast.FloorDiv):
+        yield "regroup", "divisor_rounded", ""   # `u // (w // 2 ** n)`: a stripe's width rounded before it divides
     # (and `u * (2 ** n / w)`: the factor rounded first, so an exact integer u * 2 ** n / w comes out a hair
     # below it and its floor one less)
     if isinstance(node, ast.Call) and _dotted(node.func) in ("np.arctan", "numpy.arctan", "math.atan") \
@@ -5440,6 +5452,12 @@ def _row_column_changes(node: ast.Subscript):
     """A coordinate's row taken where its column belongs, or back: `X[2] += dz` moves the third point,
     `X[:, 2] += dz` every point's depth (points are rows). Only a constant index 0..3 of a name."""
     item = node.slice
+    # (a run of entries cut along one axis where the next belongs: `costs[d, :d] = np.inf` blanks the first d rows
+    # of the d-th slice, `costs[d, :, :d]` its first d columns)
+    last = item.elts[-1] if isinstance(item, ast.Tuple) and item.elts else item
+    if isinstance(last, ast.Slice) and (last.lower is not None or last.upper is not None) and last.step is None \
+            and not (isinstance(item, ast.Tuple) and any(isinstance(e, ast.Slice) for e in item.elts[:-1])):
+        yield "row_column", "next_axis", ""
     if _constant_index(item) in (0, 1, 2, 3):
         yield "row_column", "column", ""
     elif isinstance(item, ast.Tuple) and len(item.elts) == 2 and isinstance(item.elts[0], ast.Slice) \
@@ -6049,6 +6067,7 @@ def _sibling_changes(node, words):
     yield from _row_like_its_siblings(node, words)
     yield from _term_its_siblings_have(node, words)
     yield from _as_its_twin_line(node, words)
+    yield from _like_its_siblings(node, words)
     yield from _raw_beside_derived(node, words)
     if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], _TERMS) \
             and isinstance(node.value, ast.BinOp) and isinstance(node.value.op, (ast.Add, ast.Sub)):
@@ -6650,6 +6669,49 @@ def _as_its_twin_line(node, words):
         text = ast.unparse(whole)
         if text != ast.unparse(node.value) and len(text) <= 160:
             yield "twin_step", (None, text), ""
+
+
+def _own_name(statement) -> str | None:
+    """The name a statement works on: `gM` of `gM.append(f(gM[-1]))`, `x` of `x = f(x, ...)`."""
+    if isinstance(statement, ast.Expr) and isinstance(statement.value, ast.Call) \
+            and isinstance(statement.value.func, ast.Attribute) and isinstance(statement.value.func.value, ast.Name):
+        name = statement.value.func.value.id
+        reads = [n for a in statement.value.args for n in walk(a)]
+    elif isinstance(statement, ast.Assign) and len(statement.targets) == 1 and isinstance(statement.targets[0], ast.Name):
+        name, reads = statement.targets[0].id, list(walk(statement.value))
+    else:
+        return None
+    return name if any(isinstance(n, ast.Name) and n.id == name for n in reads) else None
+
+
+def _like_its_siblings(node, words):
+    """A statement unlike its siblings in a block where they are alike but for their own names: the mask's pyramid
+    `gM.append(cv2.resize(gM[-1], size, interpolation=cv2.INTER_NEAREST))` beside `gA.append(cv2.pyrDown(gA[-1]))`
+    and `gB.append(cv2.pyrDown(gB[-1]))` -- the statement written as the two others are, in its own name."""
+    statement = _parent_of(node, words)
+    if not (isinstance(statement, (ast.Expr, ast.Assign)) and statement.value is node):
+        return
+    own = _own_name(statement)
+    block = _parent_of(statement, words)
+    siblings = next((getattr(block, field) for field in ("body", "orelse")
+                     if any(s is statement for s in getattr(block, field, []))), [])
+    if own is None or len(siblings) > _SIBLINGS_READ:
+        return
+    alike, example = Counter(), {}
+    for sibling in siblings:
+        name = _own_name(sibling) if sibling is not statement else None
+        if name is not None and name != own and type(sibling) is type(statement):
+            form = ast.dump(_renamed(sibling, name, own))
+            alike[form] += 1
+            example[form] = sibling, name
+    mine = ast.dump(statement)
+    for form, count in alike.items():
+        if count >= 2 and form != mine:
+            sibling, name = example[form]
+            yield "sibling_line", ast.unparse(_renamed(sibling.value, name, own)), ""
+
+
+_SIBLINGS_READ = 12   # statements of a block compared with each other (a longer block's lines are no siblings)
 
 
 def _inverted(mapping: dict) -> dict:

@@ -1803,9 +1803,10 @@ class _Student:
             before, after = (" ".join(ast.unparse(n).split()) for n in (context, copied))
             if max(len(before), len(after)) <= 2 * _SHOWN:   # (two whole factors: no shorter way to show it)
                 return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), before, after)
-        if operator in ADDITIONS | {"measure_first"} and len(before) <= 2 * _SHOWN and len(after) <= 2 * _SHOWN:
+        if operator in ADDITIONS | {"measure_first", "sibling_line"} and len(before) <= 2 * _SHOWN \
+                and len(after) <= 2 * _SHOWN:
             # (the twin's step added beside the line doubles it, a measure moved inside a filter rewrites both
-            # operands: shown whole, as the student would write it)
+            # operands, a line written as its siblings are rewrites it: shown whole, as the student would write it)
             return (getattr(edited, "lineno", None) or getattr(context, "lineno", fn.lineno), before, after)
         whole = _abbreviated(context, copied) if max(len(before), len(after)) > _SHOWN else None
         shortened = (whole if whole is not None and max(map(len, whole)) <= _SHOWN else None) \
@@ -1951,6 +1952,12 @@ def _one_argument_twice(fix: Fix) -> bool:
         return sum(len(names) - len(set(names)) for call in walk(tree) if isinstance(call, ast.Call)
                    for names in [[a.id for a in call.args if isinstance(a, ast.Name)]])
     return any(repeated(after) > repeated(before) for _, before, after in fix.changes)
+
+
+def _lines_changed(student, mutant) -> set:
+    """The (def, line) pairs whose code a change rewrites (a statement moved: its own line)."""
+    fix = student.fix(mutant)
+    return {(fix.where, line) for line, _, _ in fix.changes} if fix is not None else set()
 
 
 def _floor_kept(fix: Fix, floors: set) -> bool:
@@ -3138,7 +3145,20 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     # (and once a change is found, the time its confirmation takes: the reference and the change each
     # run on every confirmation input -- a whole pipeline each for a slow function)
     confirming = max(reserve, _confirming_seconds(trial))
-    for mutant in list(earlier) + _near_the_raise([m for m in runnable if m.key not in known], trial, function):
+    queue = list(earlier) + _near_the_raise([m for m in runnable if m.key not in known], trial, function)
+    # (a change that mends, or brings the answers far nearer, says where the slip is: the other changes of its
+    # statement are tried before the rest -- a normalisation's `axis=0` made `axis=1`, beside the statement moved
+    # out of its loop, or written into another row, which mend by undoing it, found first in a slow DP's search)
+    pointing, located = [], set()
+    position = 0
+    while position < len(queue):
+        for lines in [_lines_changed(student, m) for m in candidates[-1:]] + pointing:
+            if lines - located:
+                located |= lines
+                queue[position:] = sorted(queue[position:], key=lambda m, at=lines: not _lines_changed(student, m) & at)
+        pointing.clear()
+        mutant = queue[position]
+        position += 1
         if mutant.key not in known and any(m.key in known for m in candidates):
             # A change told on an earlier check of the function gives this check's answers too: that search
             # looked for the other changes mending alike (told beside it), this one need not look again.
@@ -3166,6 +3186,8 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
             if apart < 0.9 * off:
                 near.append((apart, mutant))
                 near_answers[mutant.key] = values
+                if apart < POINTING * off:
+                    pointing.append(_lines_changed(student, mutant))
             elif apart < NEARER * off:   # (judged by the check after the nearer ones; never paired)
                 slightly.append((apart, mutant))
                 near_answers[mutant.key] = values
@@ -3634,10 +3656,11 @@ def _accepted_pair(variant, both, failing) -> bool:
 
 
 FIXES = 3         # the most fixes told (one per line)
+POINTING = 0.25   # a change this much nearer the expected answers says where to look next
 # changes the student's code itself points at -- a line copied from its twin's with one name left, a step
 # done to one of two like inputs or twin terms only -- tried before every other kind's first
 # (and an OpenCV 0/1 mask used as an index, known by its name: a slow pipeline's search reaches it first)
-SHOWN_BY_THE_CODE = {"mirror", "clip_range", "sibling_step", "factor_pair", "select_mask", "twin_step", "boolean_mask", "derived_name", "measure_first", "identity",
+SHOWN_BY_THE_CODE = {"mirror", "clip_range", "sibling_step", "sibling_line", "factor_pair", "select_mask", "twin_step", "boolean_mask", "derived_name", "measure_first", "identity",
                      "first_term", "own_values", "estimator", "unused_name"}
 REMOVALS = {"drop_factor", "drop_division", "drop_centring", "drop_statement", "extra_step", "unwrap", "drop_conversion",
             "drop_mask", "drop_slice", "neutral", "drop_epsilon"}   # changes that take a step out
