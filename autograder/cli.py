@@ -1060,7 +1060,17 @@ def run_new_lab(args) -> int:
     return 0
 
 
+def _judged_not_warned() -> None:
+    """The grader's own arithmetic on a student's answers (NaN, an empty region of a wrong panorama) is judged by
+    the checks; NumPy's RuntimeWarnings about it ("Mean of empty slice") are nothing a student or an instructor
+    can act on, and are not printed (the grader's own process only: student code runs in workers)."""
+    import warnings
+
+    warnings.filterwarnings("ignore", category=RuntimeWarning)
+
+
 def main(argv=None) -> int:
+    _judged_not_warned()
     args = build_parser().parse_args(argv)
     commands = {"grade": run_grade, "list": run_list, "validate": run_validate, "batch": run_batch,
                 "gradescope": run_gradescope,
@@ -1083,6 +1093,7 @@ def _until_the_reader_goes(command, args) -> int:
 
 def grade_py_main(argv=None, root: Path | None = None) -> int:
     """``python grade.py [SELECT...] [--submission PATH]``: grade the student's own work."""
+    _judged_not_warned()
     root = root or Path.cwd()
     parser = CommandParser(
         prog="grade.py", description="Grade your labs: python grade.py [lab07 | lab07.ex2 ...]",

@@ -432,3 +432,16 @@ def test_a_check_judging_a_function_and_the_graded_function_it_calls_says_when_t
     seeds = [c for c in check_results(result, "lab08.ex4") if "5 seeds" in c.name]
     assert seeds and seeds[0].score < seeds[0].max_score
     assert "Your `homography_ransac` calls your `homography_dlt`, which fails its own checks" in seeds[0].message
+
+
+def test_a_check_waiting_for_a_failing_callee_keeps_no_recipe_hint_of_its_own(tmp_path):
+    """RANSAC, the reference's, fitting with a DLT whose v rows end in -u (blind set 08a lab08/02): its checks say
+    "fix it first, then see what this check says", so no recipe hint about RANSAC's own steps beside it."""
+    from autograder.engine.runner import grade
+    from conftest import edited_reference
+
+    folder = edited_reference(tmp_path, "lab08_homographies", ("-v * x, -v * y, -v]", "-v * x, -v * y, -u]"))
+    result = grade(str(folder), ["lab08.ex2", "lab08.ex4"], pictures="none")
+    waiting = [c for e in result.exercises for c in e.checks
+               if c.score < c.max_score and "fix it first, then see what this check says" in c.message]
+    assert waiting and all(c.hint == "" for c in waiting if not c.mistake), [(c.name, c.hint) for c in waiting]

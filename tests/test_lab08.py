@@ -460,3 +460,17 @@ def test_a_canvas_sized_from_the_images_sizes_without_a_dtype_is_read_as_the_cau
     failed = [c for c in check_results(grade(str(folder), ["lab08.ex3"]), "lab08.ex3") if c.score < c.max_score]
     assert failed and all("your code makes `np.zeros((max(h1, h2), w1 + w2, 3))`" in c.message for c in failed), \
         [c.message for c in failed]
+
+
+def test_an_empty_region_of_a_wrong_panorama_is_read_without_numpy_warnings():
+    """A panorama that leaves no part to img2 alone (a DLT gone wrong, blind set 08a lab08/02) gives the hint's
+    reading an empty region: nothing to correlate, no "Mean of empty slice" printed by the grader."""
+    import warnings
+    from types import SimpleNamespace
+
+    from autograder.labs.lab08 import _in_step
+
+    judge = SimpleNamespace(panorama=np.zeros((4, 5, 3)), expected=np.ones((4, 5, 3)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert _in_step(judge, np.zeros((4, 5), bool)) is True

@@ -455,8 +455,7 @@ def told(verdict, trial):
         depends = sorted(api_callees(code, callers[0], api) & failing) if len(callers) == 1 else []
         if depends:
             failing.add(callers[0])
-            verdict = replace(verdict, message=f"{str(verdict.message).rstrip()}\n"
-                                               f"{dependency_sentence(callers[0], depends)}")
+            verdict = _waiting(verdict, dependency_sentence(callers[0], depends))
         return verdict, False
     [function] = called
     callees = api_callees(code, function, _api(trial.lab)) if code.functions else frozenset()
@@ -481,10 +480,18 @@ def told(verdict, trial):
     # shares: `rotate` right but for `rotation_matrix`'s sign was no evidence against `_apply`)
     suspects = failing - {function} - trial.sandbox.shared.get((SHARED_RIGHT_ITSELF, trial.lab.module), set())
     if depends:
-        verdict = replace(verdict, message=f"{str(verdict.message).rstrip()}\n{dependency_sentence(function, depends)}")
+        verdict = _waiting(verdict, dependency_sentence(function, depends))
     elif code.functions and suspects:
         verdict = _shared_with_failing(verdict, code, function, suspects, _api(trial.lab))
     return verdict, False
+
+
+def _waiting(verdict, sentence: str):
+    """``verdict`` told to wait for the callees failing their own checks (``sentence``). The check says what it can
+    only once they are fixed: a recipe hint about the function's own steps -- "look at how many samples it draws"
+    to a RANSAC fitting with a wrong DLT -- waits with it; a mistake the check named of the function keeps its hint."""
+    return replace(verdict, message=f"{str(verdict.message).rstrip()}\n{sentence}",
+                   hint=verdict.hint if verdict.mistake else "")
 
 
 def _shared_with_failing(verdict, code: Code, function: str, failing, api):
