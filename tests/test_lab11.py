@@ -273,3 +273,30 @@ def test_the_truth_behind_no_point_or_points_seen_by_one_camera_only_is_empty_no
     assert X.shape == (0, 3) and pts2.shape == (0, 2) and valid.shape == (0,)
     X, pts2, valid = truth.true_correspondences(pair, np.array([[-500.0, -500.0], [5000.0, 10.0]]))
     assert not valid.any()
+
+
+def test_steep_lines_ending_at_the_width_fail_on_a_portrait_image(tmp_path):
+    """Steep lines drawn from y = 0 to y = W - 1 (the sizes mixed up, blind set 08b lab11/03) are right on every
+    image wider than tall, and stop short on a portrait one: the any-size check draws on one."""
+    from autograder.engine.runner import grade
+    from conftest import check_results, mutant
+
+    source = """
+        def draw_epipolar_lines(image, lines):
+            out = image.copy()
+            h, w = out.shape[:2]
+            for i, (a, b, c) in enumerate(np.asarray(lines, dtype=float).reshape(-1, 3)):
+                if abs(b) >= abs(a):
+                    x0, x1 = 0.0, w - 1.0
+                    y0, y1 = -(a * x0 + c) / b, -(a * x1 + c) / b
+                else:
+                    y0, y1 = 0.0, w - 1.0
+                    x0, x1 = -(b * y0 + c) / a, -(b * y1 + c) / a
+                colour = _PALETTE[i % len(_PALETTE)] if out.ndim == 3 else 255
+                cv2.line(out, _to_int((x0, y0), w, h), _to_int((x1, y1), w, h), colour, 1)
+            return out
+        """
+    result = grade(str(mutant(tmp_path, "lab11_two_view", source)), ["lab11.ex2"], pictures="none")
+    failed = [c.name for c in check_results(result, "lab11.ex2") if c.score < c.max_score]
+    assert failed == ["draw_epipolar_lines draws a line given at any scale ((a, b, c) times 2.5 is the same line), "
+                      "on an image of any size (a portrait one too)"], failed

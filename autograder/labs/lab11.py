@@ -812,13 +812,14 @@ def draw_through_matches(t):
 
 
 @ex2.check("draw_epipolar_lines draws a line given at any scale ((a, b, c) times 2.5 is the same line), "
-           "on an image of any size", points=1)
+           "on an image of any size (a portrait one too)", points=1)
 def draw_any_scale(t):
     """A line (a, b, c) is homogeneous: every non-zero multiple is the same line. epipolar_lines scales its
     lines so that a^2 + b^2 = 1, but a line given otherwise is still to be drawn where it lies (a formula
     that holds only for unit normals -- the foot of the perpendicular (-a c, -b c) -- draws it elsewhere).
     And on a photograph's size past 1000 pixels, 1280 x 960: ends clipped to a fixed number of pixels cut its lines
-    short."""
+    short; and on a portrait image, taller than wide, where steep lines ending at the width (y = W - 1, the sizes
+    mixed up) stop short of the bottom (blind set 08b lab11/03: every other image here is wider than tall)."""
     from fixtures.images import photo
 
     image = photo("coffee", (160, 120))
@@ -831,7 +832,13 @@ def draw_any_scale(t):
     lines = truth.normalise_lines(np.array([[0.3, 1.0, -900.0], [1.0, -0.4, -1100.0], [-0.05, 1.0, -100.0]]))
     what = "draw_epipolar_lines(1280x960 image, lines)"
     judge_drawing(t, what, t.call("draw_epipolar_lines", large, lines), large, lines, min_coverage=0.85)
-    return passed("the lines drawn where they lie, at a scale other than a^2 + b^2 = 1, and across a large image")
+    portrait = photo("coffee", (120, 200))
+    # (two steep lines from the top border to the bottom one, and a shallow one across)
+    lines = truth.normalise_lines(np.array([[1.0, 0.1, -60.0], [1.0, -0.3, -20.0], [-0.2, 1.0, -150.0]]))
+    what = "draw_epipolar_lines(120x200 portrait image, lines)"
+    judge_drawing(t, what, t.call("draw_epipolar_lines", portrait, lines), portrait, lines, min_coverage=0.85)
+    return passed("the lines drawn where they lie, at a scale other than a^2 + b^2 = 1, across a large image and "
+                  "a portrait one")
 
 
 @ex2.check("draw_epipolar_lines twice on the same image: each drawing shows its own lines only", points=1)
