@@ -93,3 +93,15 @@ def test_the_helper_that_centres_the_callers_array_in_place_is_told_with_its_lin
     messages = [c.message for c in check_results(result, "lab10.ex4") if c.score < c.max_score]
     assert any("in place" in m and "in `_normalising_transform`: `centred -= c` changes the array given, which "
                "`centred = points`" in m for m in messages), messages
+
+
+def test_the_copy_hint_says_only_what_numpy_does():
+    """The hint's aside on copies is NumPy's behaviour (blind set 08b's evaluator: it said `.astype(float)` of a
+    float array does not copy, which it does): np.array copies, np.asarray of a float array does not."""
+    import numpy as np
+
+    from autograder.engine import inplace
+
+    x = np.zeros(3)
+    assert not np.shares_memory(np.array(x, dtype=float), x) and np.shares_memory(np.asarray(x, dtype=float), x)
+    assert "np.asarray(x, dtype=float) of a float array does not" in inplace.HINT and "astype" not in inplace.HINT

@@ -476,3 +476,15 @@ def test_a_floor_division_is_named_as_such_not_by_a_change_that_keeps_it(tmp_pat
     result = grade(mutant(tmp_path, "lab11_two_view", source), ["lab11.ex3"], pictures="none")
     failed = failing(result, "lab11.ex3")
     assert failed and all("to `(S[0] + S[1]) / 2`" in c.message for c in failed), [c.message for c in failed]
+
+
+def test_a_tip_on_normalising_code_neither_blames_raw_coordinates_nor_lists_what_the_code_does(tmp_path):
+    """A DLT whose v rows read -u * y (blind set 08b lab08/02), fitted on normalised points: the normalisation tip
+    fires (its H is a little off on a far patch) and must say neither "with raw pixel coordinates ..." nor "check
+    that each set has its own transform, and that it is undone" (tips are said for the code as failures are)."""
+    folder = edited_reference(tmp_path, "lab08_homographies", ("-v * x, -v * y, -v]", "-v * x, -u * y, -v]"))
+    result = grade(str(folder), ["lab08.ex2"], pictures="none")
+    [tip] = [c for c in check_results(result, "lab08.ex2") if c.name == "homography_dlt normalises its points"]
+    assert tip.status == "advice", (tip.status, tip.message)
+    assert "raw pixel coordinates" not in tip.message and "check that" not in tip.hint, (tip.message, tip.hint)
+    assert tip.hint.startswith("your code already normalises the points"), tip.hint

@@ -242,8 +242,9 @@ def _same(a, b, fingerprint, relative: float = SAME) -> bool:
 
 AUGMENTS = Predicate("writes an augmented assignment (x /= s)",
                      lambda function: any(isinstance(node, ast.AugAssign) for node in walk(function)))
-HINT = (measured("work on a copy: x = np.array(x, dtype=float) copies (np.asarray and .astype(float) of a float "
-                 "array do not)")
+# (x.astype(float) copies too, whatever x's dtype; np.asarray(x, dtype=float) of a float array does not)
+HINT = (measured("work on a copy: x = np.array(x, dtype=float) copies (np.asarray(x, dtype=float) of a float "
+                 "array does not)")
         + guard(", and write x = x / s rather than x /= s", ~AUGMENTS, instead=""))
 
 

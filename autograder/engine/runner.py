@@ -46,6 +46,7 @@ from ..sandbox.supervisor import CallOutcome, Limits, Sandbox
 from .bounded import Runaway, bounded
 from .checks import Fail, StudentFailure, Trial, Verdict
 from .claims import measured, rewritten, without_guessed_cause
+from .claims import said as said_for_the_code
 from .forms import exception_form
 from .inputs import Inputs
 from .registry import Check, Exercise, discover, hidden_checks_installed, select
@@ -1278,8 +1279,12 @@ def _run_advice(sandbox: Sandbox, check: Check, modified, rules=None, inputs=Non
         trial.tips.clear()
     if trial.tips and status == PASSED:
         status = ADVICE
-        message = "\n".join(tip for tip, _ in trial.tips)
-        hint = " ".join(h for _, h in trial.tips if h)
+        # (said for the student's code as a failed check's words are: a checklist in a tip lists only what the code
+        # does not do already -- "your code already normalises ...; the error is elsewhere", not "check that each set
+        # has its own transform" to code whose sets have theirs)
+        tips = [(said_for_the_code(trial, tip), said_for_the_code(trial, h) if h else h) for tip, h in trial.tips]
+        message = "\n".join(tip for tip, _ in tips)
+        hint = " ".join(h for _, h in tips if h)
     _collect(modified, trial)
     return CheckResult(name=check.name, score=0.0, max_score=0.0, status=status, message=message,
                        hint=hint, hidden=check.hidden, output="\n".join(trial.outputs)[:6000],

@@ -522,12 +522,13 @@ def dlt_normalisation_advice(t):
     # (only within what raw coordinates explain -- the graded check's own tolerance: beyond it the H is wrong
     # otherwise, that check says so, and a tip blaming raw coordinates would be false of normalising code)
     if 1.5 * normalised < error <= 1.5 * max(normalised, raw):
+        hint = DLT_NORMALISE_HINT.said(t)
+        # (why raw coordinates do worse, said only to code that does not normalise: of code that does, it is false)
+        why = ": with raw pixel coordinates the x*x' terms (about 1e6) swamp the others and the noise is weighted " \
+              "very unevenly" if hint == DLT_NORMALISE_HINT.text else ""
         t.advise(f"On points with coordinates around 800-960 x 600-720 px your H is {error:.2f} px "
-                 f"(RMS) from the truth on average, where a normalised DLT is {normalised:.2f} px: "
-                 "with raw pixel coordinates the x*x' terms (about 1e6) swamp the others and the "
-                 "noise is weighted very unevenly. The lab sheet does not ask for it: no points "
-                 "depend on it.",
-                 hint=DLT_NORMALISE_HINT.said(t))
+                 f"(RMS) from the truth on average, where a normalised DLT is {normalised:.2f} px{why}. "
+                 "The lab sheet does not ask for it: no points depend on it.", hint=hint)
 
 
 def warp_to_reference_probe(t: Trial) -> Probe:
