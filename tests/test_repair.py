@@ -6041,3 +6041,36 @@ def test_a_line_unlike_its_siblings_is_offered_as_they_are_written():
     student = repair._Student(source, parse(source), frozenset({"graded"}))
     told = [student.fix(m).changes[0] for m in student.ordered("graded") if m.operator == "sibling_line"]
     assert [(line, after) for line, _, after in told] == [(9, "gM.append(cv2.pyrDown(gM[-1]))")], told
+
+
+def test_a_names_twin_is_offered_beyond_the_nearer_values():
+    """`w` in an else-branch below four values the if-branch made from it (blind set 08b lab11/03, `y0, y1 = 0.0,
+    w - 1.0` where `h - 1.0` belongs): its twin `h` is offered all the same."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(image, lines):
+            out = image.copy()
+            h, w = out.shape[:2]
+            lines = np.asarray(lines, dtype=float).reshape(-1, 3)
+            for i, (a, b, c) in enumerate(lines):
+                if abs(b) >= abs(a):
+                    x0, x1 = 0.0, w - 1.0
+                    y0 = -(a * x0 + c) / b
+                    y1 = -(a * x1 + c) / b
+                else:
+                    y0, y1 = 0.0, w - 1.0
+                    x0 = -(b * y0 + c) / a
+                    x1 = -(b * y1 + c) / a
+                pt0 = _to_int((x0, y0), w, h)
+                pt1 = _to_int((x1, y1), w, h)
+                colour = (0, 0, 255) if out.ndim == 3 else 255
+                cv2.line(out, pt0, pt1, colour, 1)
+            return out
+
+        def _to_int(point, width, height):
+            return tuple(int(round(v)) for v in point)
+    """)
+    offered = [(m.line, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+               if m.operator == "other_name" and m.line == 14]
+    assert (14, "h") in offered, offered

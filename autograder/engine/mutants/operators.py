@@ -7851,18 +7851,21 @@ def _name_changes(node: ast.Name, words: _Words, what, line):
                                   not _derived_names(node.id, pair[0]) and not _one_stem(node.id, pair[0]),
                                   not (pair[0] in related and (pair[0] in params) == kind),
                                   pair[1].rsplit(" of ", 1)[-1] != tail or " of " not in own))
-    count = 0
+    count, twin_given = 0, False
     for other, phrase in others:
         if (other in params) != kind and phrase in alike and not _derived_names(node.id, other):
             continue   # (a processed copy and its raw name -- `new_K` and `K` -- are tried whatever their kinds)
         if words.helper_params and other not in together and not twin_names(node.id, other) and (
                 " of " not in phrase or " of " not in own or phrase.rsplit(" of ", 1)[-1] != tail):
             continue   # in a private helper, only a sibling's or a twin's copy-paste slip (the count stays small)
+        twin = twin_names(node.id, other)
+        if count >= _OTHER_NAMES_PER_SITE and (twin_given or not twin):
+            continue   # (the name's twin is tried whatever comes before it: `w` for `h` in an else-branch, below the
+            #            four values the if-branch made from `w`)
         yield "other_name", other, f"{phrase} {_plural(phrase, 'is', 'are')} used where {own} " \
                                    f"{_plural(own, 'belongs', 'belong')}"
         count += 1
-        if count >= _OTHER_NAMES_PER_SITE:
-            return
+        twin_given |= twin
 
 
 def _every(step: int) -> str:
