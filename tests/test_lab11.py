@@ -301,6 +301,5 @@ def test_steep_lines_ending_at_the_width_fail_on_a_portrait_image(tmp_path):
     assert [c.name for c in failed] == [
         "draw_epipolar_lines draws a line given at any scale ((a, b, c) times 2.5 is the same line), on an image of "
         "any size (a portrait one too)"], [c.name for c in failed]
-    # (and named: the change is screened again on the portrait, the landscape drawings being right but for a few
-    # pixels; `w`'s twin `h` is offered in the else-branch, below the values the if-branch made from `w`)
+    # (and named: `w`'s twin `h` is offered in the else-branch, below the values the if-branch made from `w`)
     assert "changing `0.0, w - 1.0` to `0.0, h - 1.0`" in failed[0].message, failed[0].message
