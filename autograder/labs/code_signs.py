@@ -153,15 +153,17 @@ def _products(function) -> list[ast.AST]:
 
 
 def _camera_without_k(function) -> bool:
-    """A stacked ``[R | t]`` (or ``[I | 0]``) assigned to a name or passed on, that no product takes (and that
-    takes none: ``np.hstack([K @ R, t])`` has K in it, on R's columns only)."""
+    """A stacked ``[R | t]`` (or ``[I | 0]``) assigned to a name or passed on, that no product takes (and whose
+    rotation part is no product: ``np.hstack([K @ R, t])`` has K in it, on R's columns only; ``[R, -R @ C]``
+    computes its translation, without K)."""
     multiplied = _products(function)
     multiplied_names = {n.id for operand in multiplied for n in walk(operand) if isinstance(n, ast.Name)}
     multiplied_nodes = {id(n) for operand in multiplied for n in walk(operand)}
 
     def bare(stack) -> bool:
-        return _stacked(stack) and id(stack) not in multiplied_nodes and not any(
-            id(n) in multiplied_nodes for n in walk(stack) if n is not stack)
+        parts = stack.args[0].elts if isinstance(stack, ast.Call) and stack.args \
+            and isinstance(stack.args[0], (ast.List, ast.Tuple)) else []
+        return _stacked(stack) and id(stack) not in multiplied_nodes and not (parts and _products(parts[0]))
     for node in walk(function):
         if isinstance(node, ast.Assign) and bare(node.value):
             names = {t.id for t in node.targets if isinstance(t, ast.Name)}
