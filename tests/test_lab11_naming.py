@@ -50,6 +50,8 @@ def test_lines_from_the_side_borders_only_are_read(body, sides_only):
     ("P1 = np.eye(3, 4)\n        P2 = np.column_stack((R, t))", True),
     ("P1 = np.concatenate([np.eye(3), np.zeros((3, 1))], axis=1)\n        P2 = np.c_[R, t]", True),
     ("P1 = K @ np.hstack([np.eye(3), np.zeros((3, 1))])\n        P2 = K @ np.hstack([R, t])", False),
+    # a translation computed from R, without K: still built without K
+    ("P1 = np.eye(3, 4)\n        P2 = np.hstack([R, -R @ C])", True),
     # K given to R's columns only, [K R | t] (blind set 08a lab11/08): not built without K
     ("P1 = K @ np.hstack([np.eye(3), np.zeros((3, 1))])\n        P2 = np.hstack([K @ R, t])", False),
     ("P1 = np.eye(3, 4)\n        P2 = np.hstack([R, t])\n        P1, P2 = K @ P1, np.dot(K, P2)", False),
