@@ -6074,3 +6074,21 @@ def test_a_names_twin_is_offered_beyond_the_nearer_values():
     offered = [(m.line, m.edits[0][3]) for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
                if m.operator == "other_name" and m.line == 14]
     assert (14, "h") in offered, offered
+
+
+def test_twins_deeper_in_a_list_of_columns_are_exchanged_throughout_it():
+    """`np.column_stack([x1[:, 0:1] * x2, ...])` (the rows kron(x1, x2) where kron(x2, x1) belongs, blind set 08c
+    lab11/06): x1 and x2 are the formula's, not items of the list, and are exchanged throughout it; `(h, w)`, names
+    that are the items themselves, stay swap_items'."""
+    source = textwrap.dedent("""
+        import numpy as np
+
+        def graded(x1, x2, h, w):
+            A = np.column_stack([x1[:, 0:1] * x2, x1[:, 1:2] * x2, x1[:, 2:3] * x2])
+            size = np.zeros((h, w))
+            return A, size
+    """)
+    crossed = {m.edits[0][3] for m in repair.mutants_of(source, {"graded"}, phrased=False)["graded"]
+               if m.operator == "crossed"}
+    assert "np.column_stack([x2[:, 0:1] * x1, x2[:, 1:2] * x1, x2[:, 2:3] * x1])" in crossed, crossed
+    assert not any("(w, h)" in text for text in crossed), crossed

@@ -5956,8 +5956,9 @@ def _crossed_twins(node, words):
         return
     # (names in an index or a tuple -- `np.mgrid[0:rows, 0:cols]`, `(h, w)` -- are swap_items' to exchange,
     # shown as the smaller change)
-    inside = {id(n) for part in walk(node) if isinstance(part, (ast.Slice, ast.Tuple, ast.List))
-              for n in walk(part)}
+    # (a name deeper in an item -- `x1[:, 0:1] * x2` in a list of columns -- is the formula's: exchanged here)
+    inside = {id(n) for part in walk(node) if isinstance(part, ast.Slice) for n in walk(part)} \
+        | {id(item) for part in walk(node) if isinstance(part, (ast.Tuple, ast.List)) for item in part.elts}
     for a, b in pairs:
         if not any(isinstance(n, ast.Name) and n.id in (a, b) and id(n) in inside for n in walk(node)):
             yield "crossed", _names_exchanged(node, a, b), ""
