@@ -488,3 +488,49 @@ def test_a_tip_on_normalising_code_neither_blames_raw_coordinates_nor_lists_what
     assert tip.status == "advice", (tip.status, tip.message)
     assert "raw pixel coordinates" not in tip.message and "check that" not in tip.hint, (tip.message, tip.hint)
     assert tip.hint.startswith("your code already normalises the points"), tip.hint
+
+
+def test_a_squared_error_kept_in_a_name_is_told_with_the_bound_squared(tmp_path):
+    """`sq_err = np.sum(d ** 2, axis=1)`, then `sq_err < threshold` (blind set 08c lab08/07, its function as written):
+    the check names "the squared error is compared with the threshold"; beside it, the change of that kind
+    (`threshold ** 2`) is told, not `np.sum` made `np.mean` (it halves the squares and passes the check by chance)."""
+    source = """
+        def homography_ransac(src, dst, threshold=3.0, seed=None):
+            # RANSAC over 4-point samples, then a DLT refit on the inliers
+            src = np.asarray(src, dtype=np.float64).reshape(-1, 2)
+            dst = np.asarray(dst, dtype=np.float64).reshape(-1, 2)
+            n = len(src)
+            if n < 4:
+                raise ValueError("need at least 4 correspondences")
+            rng = np.random.default_rng(seed)
+            best_mask, best_count = None, 0
+            max_iters, it = 2000, 0
+            while it < max_iters:
+                it += 1
+                idx = rng.choice(n, 4, replace=False)
+                with np.errstate(all="ignore"):
+                    H = homography_dlt(src[idx], dst[idx])
+                    proj = transform_points(H, src)
+                sq_err = np.sum((proj - dst) ** 2, axis=1)
+                mask = sq_err < threshold
+                count = int(mask.sum())
+                if count > best_count:
+                    best_mask, best_count = mask, count
+                    w = count / n
+                    needed = np.log(1 - 0.999) / np.log(max(1 - w ** 4, 1e-12))
+                    max_iters = min(2000, int(np.ceil(needed)))
+            if best_count < 4:
+                return homography_dlt(src, dst), np.ones(n, dtype=bool)
+            H = homography_dlt(src[best_mask], dst[best_mask])
+            sq_err = np.sum((transform_points(H, src) - dst) ** 2, axis=1)
+            inliers = sq_err < threshold
+            if inliers.sum() >= 4:
+                H = homography_dlt(src[inliers], dst[inliers])
+            else:
+                inliers = best_mask
+            return H, inliers
+        """
+    result = grade(mutant(tmp_path, "lab08_homographies", source), ["lab08.ex4"], pictures="none")
+    told = [c.message for c in failing(result, "lab08.ex4") if "Trying small changes" in c.message]
+    assert told and all("np.mean" not in m for m in told), told
+    assert any("to `sq_err < threshold ** 2`" in m for m in told), told

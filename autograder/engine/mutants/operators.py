@@ -4011,7 +4011,7 @@ def _student_changes(node, parent, parents, words):
         yield "lower_bound", None, ""   # an index tested against its upper end only: `cols < width`
     if isinstance(node, ast.Compare) and len(node.ops) == 1 \
             and isinstance(node.ops[0], (ast.Lt, ast.LtE, ast.Gt, ast.GtE)):
-        yield from _squared_bounds(node)
+        yield from _squared_bounds(node, words)
     if isinstance(node, (ast.List, ast.Tuple)) and len(node.elts) == 3:
         yield from _translation_scaled(node)
     if isinstance(node, ast.Constant) and type(node.value) is float:
@@ -5202,14 +5202,25 @@ _ROOT_CALLS = ("np.sqrt", "numpy.sqrt", "math.sqrt", "np.hypot", "numpy.hypot", 
                "numpy.linalg.norm", "cv2.norm")
 
 
-def _squared_bounds(node):
+def _squared_bounds(node, words=None):
     """A squared distance compared with a bound that is not squared (`dx ** 2 + dy ** 2 <= r`, a disc of
-    radius sqrt(r)), or a distance compared with a squared bound (`np.hypot(dx, dy) <= r ** 2`)."""
+    radius sqrt(r)), or a distance compared with a squared bound (`np.hypot(dx, dy) <= r ** 2`). The squared
+    distance may be a name made from squares on the line of its own above (`sq_err = np.sum(d ** 2, axis=1)`,
+    then `sq_err < threshold`)."""
+    def squared(side) -> bool:
+        if _squares(side):
+            return True
+        if words is None or not isinstance(side, ast.Name):
+            return False
+        made = [(at, value) for at, value, index in words.definitions.get(side.id, ())
+                if at < node.lineno and index is None]
+        return bool(made) and _squares(max(made, key=lambda pair: pair[0])[1]) and not any(
+            isinstance(n, ast.Call) and _dotted(n.func) in _ROOT_CALLS for n in walk(max(made, key=lambda p: p[0])[1]))
     for side, other in ((node.left, node.comparators[0]), (node.comparators[0], node.left)):
         bare = isinstance(other, (ast.Name, ast.Attribute, ast.Subscript, ast.Constant)) \
             or isinstance(other, ast.Call) and _dotted(other.func) in ("float", "int")
         rooted = any(isinstance(n, ast.Call) and _dotted(n.func) in _ROOT_CALLS for n in walk(side))
-        if bare and _squares(side) and not rooted:
+        if bare and squared(side) and not rooted:
             written = ast.unparse(ast.Compare(side, node.ops, [ast.BinOp(other, ast.Pow(), ast.Constant(2))])
                                   if side is node.left else
                                   ast.Compare(ast.BinOp(other, ast.Pow(), ast.Constant(2)), node.ops, [side]))

@@ -46,7 +46,7 @@ from ..inherited import SHARED_FAILING
 from . import anchors, naming
 from .aligned import aligned_mutants
 from .helper import HelperFailed
-from .operators import (DRAWING_COLOUR_AT, _MAKE, _MOVES, _defs, _derived_names, _dotted, _entry_of_literal, _parents, _replace, mutants_of,
+from .operators import (DRAWING_COLOUR_AT, OPERATORS, _MAKE, _MOVES, _defs, _derived_names, _dotted, _entry_of_literal, _parents, _replace, mutants_of,
                         mutated_defs, runs, twin_names, unpacked_items)
 
 CHECK_SECONDS = 3.0       # the repairs' time for one failed check (the grading's is the error model's)
@@ -864,6 +864,10 @@ class _Student:
         """``mutants``, those on a line holding a call the text ``said`` quotes (`np.sign`, `cv2.remap`)
         first (in their order)."""
         quoted = set(re.findall(r"\b(?:np|numpy|cv2|cv|math)\.[A-Za-z_][\w.]*\w", said or ""))
+        # (and the changes of the kinds the text names -- "the squared error is compared with the threshold": a
+        # squared bound -- before the others)
+        first = {m.key for m in mutants if said and _agrees_with(m.operator, said.partition(". Trying")[0])}
+        mutants = [m for m in mutants if m.key in first] + [m for m in mutants if m.key not in first]
         if not quoted:
             return mutants
         lines = self.text.splitlines()
@@ -1958,6 +1962,12 @@ def _lines_changed(student, mutant) -> set:
     """The (def, line) pairs whose code a change rewrites (a statement moved: its own line)."""
     fix = student.fix(mutant)
     return {(fix.where, line) for line, _, _ in fix.changes} if fix is not None else set()
+
+
+def _agrees_with(operator: str, name: str) -> bool:
+    """Whether a name of a mistake uses one of the words an operator's sentences use."""
+    said = name.lower()
+    return any(word in said for word in OPERATORS.get(operator, ()))
 
 
 def _floor_kept(fix: Fix, floors: set) -> bool:
@@ -4835,6 +4845,13 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
     if by_hand and repair.fixes and student_steers(trial, repair):
         return verdict   # (beside the check's own name, a change that only steers the code round a branch adds nothing)
     repair = _upstream(repair, trial)
+    if by_hand and verdict.mistake:
+        # (beside the check's own name, the changes whose operator's words the name uses are told, where there are
+        # some: `sq_err < threshold ** 2` beside "the squared error is compared with the threshold", not `np.sum`
+        # made `np.mean`, which mends by halving what the name says is compared)
+        agreeing = tuple(fix for fix in repair.fixes if _agrees_with(fix.operator, verdict.mistake))
+        if agreeing and len(agreeing) < len(repair.fixes):
+            repair = replace(repair, fixes=agreeing)
     # (what later checks take as known is what is told: a compensation dropped here is no fix for them)
     found = trial.sandbox.shared.setdefault("repair found", {})
     told = {repr(fix.edits) for fix in repair.fixes}
