@@ -59,6 +59,11 @@ def test_the_highest_score_is_seen_through_a_negation_in_a_helper(negate, pick, 
      "        if score > best:\n            best, keep = score, d\n    return keep\n", True),
     ("def f(scores):\n    s = -scores\n    return np.argmin(-s, axis=0)\n", False),   # negated twice
     ("def f(scores):\n    return np.argsort(scores, axis=0)[0]\n", False),
+    # (an NCC negated in its numerator, stored in a volume and its argmin taken: blind set 08d lab12/04)
+    ("def f(volume, L, R, d, denom):\n    cov = cv2.blur(L * R, (5, 5))\n    c = -cov / (denom + 1e-6)\n"
+     "    volume[d] = c\n    return np.argmin(volume, axis=0)\n", True),
+    ("def f(volume, L, R, d, denom):\n    cov = cv2.blur(L * R, (5, 5))\n    c = cov / (denom + 1e-6)\n"
+     "    volume[d] = c\n    return np.argmin(volume, axis=0)\n", False),
 ])
 def test_other_ways_of_keeping_the_highest_score(source, highest):
     assert bool(found(KEEPS_HIGHEST, source, "f")) == highest
@@ -534,3 +539,38 @@ def test_a_squared_error_kept_in_a_name_is_told_with_the_bound_squared(tmp_path)
     told = [c.message for c in failing(result, "lab08.ex4") if "Trying small changes" in c.message]
     assert told and all("np.mean" not in m for m in told), told
     assert any("to `sq_err < threshold ** 2`" in m for m in told), told
+
+
+def test_a_panorama_at_half_brightness_is_told_its_levels_scaled_not_drawn_over(tmp_path):
+    """A two-image sum divided by 2 everywhere (blind set 08d lab08/07): img1 is itself where img2 covers it too and
+    half as bright where it alone does -- told as levels scaled (a blend's weights), not as "other content drawn over
+    the rest"; and no change writing `/ 1.0` (a sum left undivided passes the geometry checks by chance)."""
+    source = """
+        _stitch_right = stitch
+        def stitch(img1, img2):
+            pts1, pts2 = match_features(img1, img2)
+            H, _ = homography_ransac(pts2, pts1, threshold=3.0, seed=0)
+            h1, w1 = img1.shape[:2]
+            h2, w2 = img2.shape[:2]
+            c1 = np.array([[0, 0], [w1 - 1, 0], [w1 - 1, h1 - 1], [0, h1 - 1]], dtype=np.float64)
+            c2 = transform_points(H, np.array([[0, 0], [w2 - 1, 0], [w2 - 1, h2 - 1], [0, h2 - 1]], dtype=np.float64))
+            allc = np.vstack([c1, c2])
+            x_min, y_min = np.floor(allc.min(axis=0)).astype(int)
+            x_max, y_max = np.ceil(allc.max(axis=0)).astype(int)
+            T = np.array([[1, 0, -x_min], [0, 1, -y_min], [0, 0, 1]], dtype=np.float64)
+            size = (x_max - x_min + 1, y_max - y_min + 1)
+            warped1 = apply_homography(img1, T, size).astype(np.float64)
+            warped2 = apply_homography(img2, T @ H, size).astype(np.float64)
+            m1 = apply_homography(np.ones((h1, w1), np.float32), T, size)
+            m2 = apply_homography(np.ones((h2, w2), np.float32), T @ H, size)
+            total = warped1 * m1[..., None] + warped2 * m2[..., None]
+            count = m1 + m2
+            pano = total / 2.0
+            return np.clip(np.round(pano), 0, 255).astype(np.uint8)
+        """
+    result = grade(mutant(tmp_path, "lab08_homographies", source), ["lab08.ex5"], pictures="none")
+    failed = failing(result, "lab08.ex5")
+    assert failed and not any("other content is drawn over" in c.message for c in failed), [c.message for c in failed]
+    assert any("its levels are scaled" in c.message for c in failed)
+    assert not any("/ 1.0`" in c.message for c in failed), [c.message for c in failed]
+

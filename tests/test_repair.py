@@ -6092,3 +6092,18 @@ def test_twins_deeper_in_a_list_of_columns_are_exchanged_throughout_it():
                if m.operator == "crossed"}
     assert "np.column_stack([x2[:, 0:1] * x1, x2[:, 1:2] * x1, x2[:, 2:3] * x1])" in crossed, crossed
     assert not any("(w, h)" in text for text in crossed), crossed
+
+
+@pytest.mark.parametrize("before, after, written", [
+    ("pano = total / 2.0", "pano = total / 1.0", True),    # (blind set 08d lab08/07: a sum left undivided)
+    ("s = (S[0] + S[1]) // 2", "s = (S[0] + S[1]) // 1", True),
+    ("x = a - 1", "x = a - 0", True),
+    ("x = 2 * a", "x = 1 * a", True),
+    ("pano = total / 2.0", "pano = total / count", False),
+    ("x = a / 1.0", "x = b / 1.0", False),                 # (already written so: not the change's)
+])
+def test_a_change_writing_a_neutral_operand_is_no_repair(before, after, written):
+    """`total / 2.0` -> `total / 1.0`: code nobody writes, mending by accident where it mends; never told."""
+    from types import SimpleNamespace
+
+    assert repair._neutral_operand_written(SimpleNamespace(changes=((1, before, after),))) == written

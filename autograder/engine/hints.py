@@ -457,7 +457,7 @@ def keyword(function: str, name: str, value=ANY) -> Predicate:
 # in the function (``costs[d] = -ncc`` counts for ``costs``), the module's functions it calls
 # (their returned value), each negation flipping the sign; a score is recognised by its name
 # (``score``, ``ncc``, ``corr``, ...), so a negated shift (``-d``) is no negated score.
-SCORE_NAMES = ("score", "ncc", "corr", "sim", "zncc", "nxc")
+SCORE_NAMES = ("score", "ncc", "corr", "sim", "zncc", "nxc", "cov")
 COST_NAMES = ("cost", "ssd", "sad", "energy", "err", "dist", "diff")
 _FOLLOW = 8   # steps followed back from the picked value
 
@@ -477,6 +477,10 @@ def _negation(node):
         return node.operand
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) and isinstance(node.left, ast.Constant):
         return node.right
+    # (a negated numerator or factor: `-cov / (denom + 1e-6)` is the NCC negated)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Div, ast.Mult)) \
+            and _negation(node.left) is not None and _negation(node.right) is None:
+        return ast.BinOp(_negation(node.left), node.op, node.right)
     return None
 
 

@@ -2280,6 +2280,14 @@ def placed_as_is(panorama, image, offset, name: str, scaled=False) -> tuple[bool
                            "each pixel")
         return False, f"only {share:.0%} of {name}'s area is {name} as it is, only shifted"
     if content >= 0.9:
+        # (the rest may be the image itself at another brightness -- a sum divided by 2 where one image alone
+        # covers it -- not other content drawn over it: a smooth scale of its levels reproducing it says so)
+        scaled = levels_scaled(panorama, image, offset) if scaled is False else scaled
+        if scaled:
+            return False, (f"{name} is in place, only shifted, over {share:.0%} of its area, and over the rest its "
+                           f"levels are scaled, by a factor from {scaled[0]:.2f} to {scaled[1]:.2f} across it where it "
+                           "should be 1: its geometry is right and its brightness is not, as when a blend's weights "
+                           "do not add up to 1 at each pixel")
         return True, f"{name} is in place, only shifted, over {share:.0%} of its area: other content is drawn over the rest"
     return False, (f"{name} is in place, only shifted, over {share:.0%} of its area; {1 - content:.0%} of the rest is "
                    "black (nothing drawn)")

@@ -1970,6 +1970,32 @@ def _agrees_with(operator: str, name: str) -> bool:
     return any(word in said for word in OPERATORS.get(operator, ()))
 
 
+_NEUTRAL_RIGHT = {ast.FloorDiv: 1, ast.Div: 1, ast.Mult: 1, ast.Pow: 1, ast.Add: 0, ast.Sub: 0}
+_NEUTRAL_LEFT = {ast.Mult: 1, ast.Add: 0}
+
+
+def _neutral_operands(text: str) -> int:
+    """How many operations in ``text`` take a written neutral operand (`x / 1.0`, `n - 0`, `1 * x`)."""
+    try:
+        tree = parse(text.strip().rstrip(":"))
+    except (SyntaxError, ValueError, RecursionError, MemoryError):
+        return 0
+
+    def neutral(operand, table, op) -> bool:
+        return isinstance(operand, ast.Constant) and type(operand.value) in (int, float) \
+            and type(op) in table and operand.value == table[type(op)]
+    return sum(isinstance(node, ast.BinOp) and (neutral(node.right, _NEUTRAL_RIGHT, node.op)
+                                                or neutral(node.left, _NEUTRAL_LEFT, node.op))
+               for node in walk(tree))
+
+
+def _neutral_operand_written(fix: Fix) -> bool:
+    """Whether a change writes an operation with a neutral operand (`total / 2.0` -> `total / 1.0`): code nobody
+    writes, that mends by accident where it mends (a sum of two images left undivided passes the checks of the
+    geometry, and saturates the overlap); a change taking the operation out says the same in the student's terms."""
+    return any(_neutral_operands(after) > _neutral_operands(before) for _, before, after in fix.changes)
+
+
 def _floor_kept(fix: Fix, floors: set) -> bool:
     """Whether a change keeps a floor division on a line where making it a true division mends too."""
     return fix.operator != "true_division" and fix.changes[0][0] in floors and "//" in fix.changes[0][2]
@@ -3317,7 +3343,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
         if len(fixes) >= FIXES or clock.left() <= 0:
             break
         if fix.changes[0][0] in lines or _dehomogenisation_dropped(fix) or student.skips_a_right_step(mutant) \
-                or _one_argument_twice(fix) \
+                or _one_argument_twice(fix) or _neutral_operand_written(fix) \
                 or student.compares_with_its_own_size(mutant) or student.reduces_a_number(mutant, numbers) \
                 or student.negates_a_size(mutant) or student.leaves_a_step_unused(mutant):
             continue
