@@ -2271,23 +2271,19 @@ def placed_as_is(panorama, image, offset, name: str, scaled=False) -> tuple[bool
     shows of it in words), from :func:`in_place` (and :func:`levels_scaled`, or ``scaled``, its answer
     where the caller has it)."""
     share, content = in_place(panorama, image, offset)
-    if share < IN_PLACE_SHARE:
+    # (where most of it is in place and the rest is not black, the rest may be the image itself at another
+    # brightness -- a sum divided by 2 where one image alone covers it --, not other content drawn over it)
+    if share < IN_PLACE_SHARE or content >= 0.9:
         scaled = levels_scaled(panorama, image, offset) if scaled is False else scaled
         if scaled:
-            return False, (f"{name} is in place, only shifted, but its levels are scaled, by a factor from "
-                           f"{scaled[0]:.2f} to {scaled[1]:.2f} across it where it should be 1: its geometry is "
-                           "right and its brightness is not, as when a blend's weights do not add up to 1 at "
-                           "each pixel")
+            where = "but its levels are scaled" if share < IN_PLACE_SHARE else \
+                f"over {share:.0%} of its area, and over the rest its levels are scaled"
+            return False, (f"{name} is in place, only shifted, {where}, by a factor from {scaled[0]:.2f} to "
+                           f"{scaled[1]:.2f} across it where it should be 1: its geometry is right and its brightness "
+                           "is not, as when a blend's weights do not add up to 1 at each pixel")
+    if share < IN_PLACE_SHARE:
         return False, f"only {share:.0%} of {name}'s area is {name} as it is, only shifted"
     if content >= 0.9:
-        # (the rest may be the image itself at another brightness -- a sum divided by 2 where one image alone
-        # covers it -- not other content drawn over it: a smooth scale of its levels reproducing it says so)
-        scaled = levels_scaled(panorama, image, offset) if scaled is False else scaled
-        if scaled:
-            return False, (f"{name} is in place, only shifted, over {share:.0%} of its area, and over the rest its "
-                           f"levels are scaled, by a factor from {scaled[0]:.2f} to {scaled[1]:.2f} across it where it "
-                           "should be 1: its geometry is right and its brightness is not, as when a blend's weights "
-                           "do not add up to 1 at each pixel")
         return True, f"{name} is in place, only shifted, over {share:.0%} of its area: other content is drawn over the rest"
     return False, (f"{name} is in place, only shifted, over {share:.0%} of its area; {1 - content:.0%} of the rest is "
                    "black (nothing drawn)")
