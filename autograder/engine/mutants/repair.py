@@ -860,14 +860,17 @@ class _Student:
             self._unpacking = found
         return self._unpacking.get(line, [])
 
-    def quoted_first(self, mutants, said: str) -> list:
+    def quoted_first(self, mutants, said: str, named: str = "") -> list:
         """``mutants``, those on a line holding a call the text ``said`` quotes (`np.sign`, `cv2.remap`)
-        first (in their order)."""
+        first (in their order), and before them those of the kinds the check's name of the mistake (``named``)
+        speaks of."""
         quoted = set(re.findall(r"\b(?:np|numpy|cv2|cv|math)\.[A-Za-z_][\w.]*\w", said or ""))
-        # (and the changes of the kinds the text names -- "the squared error is compared with the threshold": a
-        # squared bound -- before the others)
-        first = {m.key for m in mutants if said and _agrees_with(m.operator, said.partition(". Trying")[0])}
-        mutants = [m for m in mutants if m.key in first] + [m for m in mutants if m.key not in first]
+        # (the changes of the kinds the check's name speaks of -- "the squared error is compared with the
+        # threshold": a squared bound -- before the others; the name, not the message, whose measures use every word)
+        # (of those, the kinds whose word comes first in the name first: "squared" before "compared")
+        at = {m.key: _agreement_at(m.operator, named) for m in mutants} if named else {}
+        first = sorted((m for m in mutants if at.get(m.key) is not None), key=lambda m: at[m.key])
+        mutants = first + [m for m in mutants if at.get(m.key) is None]
         if not quoted:
             return mutants
         lines = self.text.splitlines()
@@ -1964,10 +1967,19 @@ def _lines_changed(student, mutant) -> set:
     return {(fix.where, line) for line, _, _ in fix.changes} if fix is not None else set()
 
 
-def _agrees_with(operator: str, name: str) -> bool:
-    """Whether a name of a mistake uses one of the words an operator's sentences use."""
+def _agreement_at(operator: str, name: str) -> int | None:
+    """Where in a name of a mistake the first of the words an operator's sentences use stands, as a word or a
+    word's start ("squared" for "square"; not "pointing" for "int", nor a letter or a digit alone); None where the
+    name uses none."""
     said = name.lower()
-    return any(word in said for word in OPERATORS.get(operator, ()))
+    found = [match.start() for word in OPERATORS.get(operator, ()) if len(word) >= 3
+             for match in [re.search(rf"(?<![a-z0-9_]){re.escape(word)}", said)] if match]
+    return min(found) if found else None
+
+
+def _agrees_with(operator: str, name: str) -> bool:
+    """Whether a name of a mistake uses one of the words an operator's sentences use (:func:`_agreement_at`)."""
+    return _agreement_at(operator, name) is not None
 
 
 _NEUTRAL_RIGHT = {ast.FloorDiv: 1, ast.Div: 1, ast.Mult: 1, ast.Pow: 1, ast.Add: 0, ast.Sub: 0}
@@ -2494,7 +2506,8 @@ def _within(value, reference, rtol: float, grey: float, projective: bool = True)
 
 
 # ------------------------------------------------------------------ the search
-def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = None, said: str = "") -> Repair | None:
+def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = None, said: str = "",
+                   named: str = "") -> Repair | None:
     """A change of the student's code that makes the failed trial's answers right, confirmed; or None.
     ``tries``: at most this many single changes, no pairs (a search whose outcome does not depend on
     the machine's speed, within ``seconds``).
@@ -2526,7 +2539,7 @@ def name_by_repair(trial, seconds: float = CHECK_SECONDS, tries: int | None = No
         student = _student_code(trial)
         if student is None:
             return None
-        return _search(trial, model, student, clock, tries, said)
+        return _search(trial, model, student, clock, tries, said, named)
     except HelperFailed:
         return None
     finally:
@@ -2557,7 +2570,7 @@ def _recorded(trial) -> dict:
     return recorded
 
 
-def _search(trial, model, student: _Student, clock, tries=None, said: str = "") -> Repair | None:
+def _search(trial, model, student: _Student, clock, tries=None, said: str = "", named: str = "") -> Repair | None:
     runner = naming.helper()
     for function, calls in _recorded(trial).items():
         if function not in model.mutants or not student.ordered(function):
@@ -2579,7 +2592,7 @@ def _search(trial, model, student: _Student, clock, tries=None, said: str = "") 
             failing = [len(inputs) - 1]
         if not failing:
             continue
-        found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle, tries, said)
+        found = _repaired(trial, model, student, function, inputs, references, failing, clock, subtle, tries, said, named)
         seen = trial.sandbox.shared.setdefault("repair seen", {}).setdefault(function, [])
         known = {_key(call) for call in seen}
         seen += [call for call in inputs if _key(call) not in known][:max(0, SEEN - len(seen))]
@@ -3129,7 +3142,7 @@ def _wrong(answer, reference) -> bool:
 
 
 def _repaired(trial, model, student, function, inputs, references, failing, clock, subtle=False,
-              tries=None, said="") -> Repair | None:
+              tries=None, said="", named="") -> Repair | None:
     """The confirmed single changes of ``function``'s code (or of a helper it runs) whose answers on
     the ``failing`` inputs are the reference's (up to :data:`FIXES`, one per line), or with which the
     failed check itself passes (:meth:`_Variants.passes_check`; only that where the student's answers
@@ -3161,7 +3174,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     runnable = student.vouched_last(runnable, function, passing_functions(trial))
     # The check's own name of the mistake, where it quotes the student's code ("your code fixes signs
     # with np.sign"), says where to look first.
-    runnable = student.quoted_first(runnable, said)
+    runnable = student.quoted_first(runnable, said, named)
     if all(_sized_otherwise(variant.students[i], references[i]) for i in failing):
         # An answer of another size (an image shrunk, a map cropped): only code that makes or reads a size can
         # mend it -- those changes first (a resize for wide images, taken out whole, is far down the list).
@@ -4864,7 +4877,8 @@ def named_by_repair(verdict, trial, traceback_text: str = ""):
             return pointed
     found_before = {function: {repr(m.edits) for m in mutants}
                     for function, mutants in trial.sandbox.shared.get("repair found", {}).items()}
-    repair = name_by_repair(trial, BESIDE_SECONDS, BESIDE_TRIES, said=str(verdict.message)) if by_hand \
+    repair = name_by_repair(trial, BESIDE_SECONDS, BESIDE_TRIES, said=str(verdict.message),
+                            named=str(verdict.mistake)) if by_hand \
         else name_by_repair(trial)
     if repair is None:
         return verdict
