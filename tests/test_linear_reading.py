@@ -462,3 +462,30 @@ def test_a_module_too_large_to_read_is_told_to_the_student(tmp_path):
     result = grade(folder, ["lab07.ex1"], pictures="none", include_hidden=False)
     assert result.exercises[0].score == result.exercises[0].max_score
     assert any(note.startswith(f"{module}.py: the code was not read") for note in result.notes), result.notes
+
+
+def test_a_chain_of_operations_is_read_in_bounded_steps(monkeypatch):
+    """`-a / b / b / ...` and `back[x] + back[x] + ...`: the negation reading (lab 12's hint) and the whole-number
+    reading (integer arrays) each read a side once -- reading both sides twice per level was 2 ** length steps."""
+    import ast
+
+    from autograder.engine import hints
+    from autograder.loading import reading
+
+    calls = {"plain": 0, "integral": 0}
+    plain, integral = hints._plain_negation, reading._integral_by_making
+
+    def counted_plain(node):
+        calls["plain"] += 1
+        assert calls["plain"] < 1000, "the chain is read again at each level"
+        return plain(node)
+
+    def counted_integral(*args, **kwargs):
+        calls["integral"] += 1
+        assert calls["integral"] < 1000, "the chain is read again at each level"
+        return integral(*args, **kwargs)
+    monkeypatch.setattr(hints, "_plain_negation", counted_plain)
+    monkeypatch.setattr(reading, "_integral_by_making", counted_integral)
+    hints._negation(ast.parse("y = -a" + " / b" * 60).body[0].value)
+    reading._integral_by_making(ast.parse("y = " + " + ".join(["back[x]"] * 60)).body[0].value, {"back": None})
+    assert calls["plain"] <= 3 and calls["integral"] <= 2 * reading._INTEGRAL_DEPTH + 2, calls

@@ -471,16 +471,27 @@ def _named(node, names) -> bool:
     return False
 
 
-def _negation(node):
+def _plain_negation(node):
     """The operand of ``-x`` or ``c - x`` (``c`` a constant), else None."""
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub) and not isinstance(node.operand, ast.Constant):
         return node.operand
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Sub) and isinstance(node.left, ast.Constant):
         return node.right
-    # (a negated numerator or factor: `-cov / (denom + 1e-6)` is the NCC negated)
-    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Div, ast.Mult)) \
-            and _negation(node.left) is not None and _negation(node.right) is None:
-        return ast.BinOp(_negation(node.left), node.op, node.right)
+    return None
+
+
+def _negation(node):
+    """The operand of ``-x`` or ``c - x`` (``c`` a constant), or of a product or quotient one factor of which is
+    negated so (`-cov / (denom + 1e-6)` is the NCC negated), else None. One level only: a chain of divisions is
+    read in constant time, whatever its length."""
+    plain = _plain_negation(node)
+    if plain is not None or not (isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Div, ast.Mult))):
+        return plain
+    left, right = _plain_negation(node.left), _plain_negation(node.right)
+    if left is not None and right is None:
+        return ast.BinOp(left, node.op, node.right)
+    if right is not None and left is None and isinstance(node.op, ast.Mult):
+        return ast.BinOp(node.left, node.op, right)
     return None
 
 

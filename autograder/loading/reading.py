@@ -452,9 +452,13 @@ def _integer_arrays(name, function) -> list[Finding]:
 _INTEGRAL_OPERATIONS = (ast.Add, ast.Sub, ast.Mult, ast.FloorDiv, ast.Mod)
 
 
-def _integral_by_making(node, integer_arrays: dict) -> bool:
+_INTEGRAL_DEPTH = 8   # operations followed into a value written (a longer chain is read as not whole)
+
+
+def _integral_by_making(node, integer_arrays: dict, depth: int = _INTEGRAL_DEPTH) -> bool:
     """Whether a value written is whole by its making: read from one of the integer arrays (a backtrack's
-    `disp[:, x - 1] = back[x][rows, disp[:, x]]`), or whole-number arithmetic on such values: nothing to cut."""
+    `disp[:, x - 1] = back[x][rows, disp[:, x]]`), or whole-number arithmetic on such values: nothing to cut.
+    Each side is read once, :data:`_INTEGRAL_DEPTH` operations deep at most."""
     if isinstance(node, ast.Subscript):
         base = node.value
         while isinstance(base, ast.Subscript):
@@ -462,12 +466,14 @@ def _integral_by_making(node, integer_arrays: dict) -> bool:
         return isinstance(base, ast.Name) and base.id in integer_arrays
     if isinstance(node, ast.Name):
         return node.id in integer_arrays
+    if depth <= 0:
+        return False
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
-        return _integral_by_making(node.operand, integer_arrays)
+        return _integral_by_making(node.operand, integer_arrays, depth - 1)
     if isinstance(node, ast.BinOp) and isinstance(node.op, _INTEGRAL_OPERATIONS):
-        sides = (node.left, node.right)
-        return any(_integral_by_making(side, integer_arrays) for side in sides) and all(
-            _integral_by_making(side, integer_arrays) or _constant_integers(side) for side in sides)
+        read = [_integral_by_making(side, integer_arrays, depth - 1) for side in (node.left, node.right)]
+        return any(read) and all(whole or _constant_integers(side)
+                                 for whole, side in zip(read, (node.left, node.right)))
     return False
 
 

@@ -3202,7 +3202,7 @@ def _repaired(trial, model, student, function, inputs, references, failing, cloc
     position = 0
     while position < len(queue):
         for lines in [_lines_changed(student, m) for m in candidates[-1:]] + pointing:
-            if lines - located:
+            if lines - located and len(located) < POINTED_LINES:   # (a few places: each is a sort of the rest)
                 located |= lines
                 queue[position:] = sorted(queue[position:], key=lambda m, at=lines: not _lines_changed(student, m) & at)
         pointing.clear()
@@ -3706,6 +3706,7 @@ def _accepted_pair(variant, both, failing) -> bool:
 
 FIXES = 3         # the most fixes told (one per line)
 POINTING = 0.25   # a change this much nearer the expected answers says where to look next
+POINTED_LINES = 12   # at most this many lines pointed at in one search
 # changes the student's code itself points at -- a line copied from its twin's with one name left, a step
 # done to one of two like inputs or twin terms only -- tried before every other kind's first
 # (and an OpenCV 0/1 mask used as an index, known by its name: a slow pipeline's search reaches it first)
