@@ -1555,7 +1555,8 @@ def _grey_conversion(t: Trial) -> str:
         for node in walk(function):
             if isinstance(node, ast.Call) and _path(node.func).rsplit(".", 1)[-1] == "cvtColor" \
                     and any(_path(a).endswith("2GRAY") for a in [*node.args[1:2], *(k.value for k in node.keywords)]):
-                return f"`{ast.unparse(node)}`, line {node.lineno}"
+                said = ast.unparse(node)   # (a call written long is quoted by its name: the line says where)
+                return f"`{said if len(said) <= 80 else _path(node.func) + '(...)'}`, line {node.lineno}"
     return ""
 
 

@@ -868,9 +868,9 @@ class _Student:
         # (the changes of the kinds the check's name speaks of -- "the squared error is compared with the
         # threshold": a squared bound -- before the others; the name, not the message, whose measures use every word)
         # (of those, the kinds whose word comes first in the name first: "squared" before "compared")
-        at = {m.key: _agreement_at(m.operator, named) for m in mutants} if named else {}
-        first = sorted((m for m in mutants if at.get(m.key) is not None), key=lambda m: at[m.key])
-        mutants = first + [m for m in mutants if at.get(m.key) is None]
+        at = {operator: _agreement_at(operator, named) for operator in {m.operator for m in mutants}} if named else {}
+        first = sorted((m for m in mutants if at.get(m.operator) is not None), key=lambda m: at[m.operator])
+        mutants = first + [m for m in mutants if at.get(m.operator) is None]
         if not quoted:
             return mutants
         lines = self.text.splitlines()
